@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Set up (packages, configure, build) and run every test. Usage: scripts/test.sh [BUILD_DIR] [extra cmake args...]
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${1:-$root/build}
+shift || true
+"$root/scripts/setup.sh" "$build" -DXPARAM_BUILD_TESTS=ON "$@"
+ctest --test-dir "$build" --output-on-failure -j "$(nproc)"

@@ -1,0 +1,37 @@
+#pragma once
+/// \file
+/// The one mesh type of xparam: an OpenMesh triangle mesh with double-precision points.
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <Eigen/Core>
+
+namespace xparam {
+
+/// Double-precision points; status attributes so deletion and garbage collection work;
+/// previous-halfedge links so rotations and splits are O(1).
+struct MeshTraits : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  VertexAttributes(OpenMesh::Attributes::Status);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+  FaceAttributes(OpenMesh::Attributes::Status);
+  HalfedgeAttributes(OpenMesh::Attributes::Status | OpenMesh::Attributes::PrevHalfedge);
+};
+
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
+using VertexHandle = OpenMesh::VertexHandle;
+using HalfedgeHandle = OpenMesh::HalfedgeHandle;
+using EdgeHandle = OpenMesh::EdgeHandle;
+using FaceHandle = OpenMesh::FaceHandle;
+
+/// A mesh point as an Eigen vector, for the linear algebra.
+inline Eigen::Vector3d to_eigen(const Mesh::Point& p) { return {p[0], p[1], p[2]}; }
+
+/// An Eigen vector as a mesh point.
+inline Mesh::Point to_point(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+/// Position of vertex `v` as an Eigen vector.
+inline Eigen::Vector3d position(const Mesh& mesh, VertexHandle v) { return to_eigen(mesh.point(v)); }
+
+}  // namespace xparam

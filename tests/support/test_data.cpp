@@ -1,0 +1,26 @@
+#include "support/test_data.h"
+
+#include <unistd.h>
+
+namespace xparam::test {
+
+std::filesystem::path data_path(const std::string& relative) {
+  return std::filesystem::path(XPARAM_SOURCE_DIR) / "tests" / "data" / relative;
+}
+
+std::filesystem::path shared_data_dir() {
+  const std::filesystem::path dir = std::filesystem::path(XPARAM_SOURCE_DIR).parent_path() / "shared" / "data";
+  return std::filesystem::is_directory(dir) ? dir : std::filesystem::path();
+}
+
+std::filesystem::path xparam_binary() { return XPARAM_BINARY; }
+
+std::filesystem::path fresh_temp_dir(const std::string& name) {
+  // The process id keeps parallel ctest runs of different tests apart.
+  const auto dir = std::filesystem::temp_directory_path() / ("xparam_test_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace xparam::test
