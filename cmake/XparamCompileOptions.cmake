@@ -4,6 +4,8 @@ target_compile_options(xparam_compile_options INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow=local -Wnon-virtual-dtor
   # OpenMesh and Eigen headers trip these; our own code is kept clean of them.
   -Wno-deprecated-copy -Wno-maybe-uninitialized
+  # GCC 12 warns falsely on "literal" + std::string&& (GCC bug 105329).
+  -Wno-restrict
   # Bit-identical results at any thread count need IEEE arithmetic without contraction.
   -ffp-contract=off)
 if(XPARAM_WERROR)

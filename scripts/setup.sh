@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake git pkg-config
   libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev
-  libhdf5-dev hdf5-tools nlohmann-json3-dev
+  libhdf5-dev hdf5-tools nlohmann-json3-dev libssl-dev
   libgtest-dev googletest libbenchmark-dev
   python3 python3-h5py parallel
 )

@@ -6,5 +6,12 @@
 
 namespace xparam::cli {
 
+void add_check_command(CLI::App& app);  ///< `xparam check MESH...` (check_command.cpp)
+void add_pair_command(CLI::App& app);   ///< `xparam pair --source S ... --out DIR` (pair_command.cpp)
+void add_batch_command(CLI::App& app);  ///< `xparam batch --template T --targets DIR --out A.h5` (batch_command.cpp)
+void add_inspect_command(CLI::App& app);  ///< `xparam inspect ARCHIVE [--json]` (inspect_command.cpp)
+void add_export_command(CLI::App& app);   ///< `xparam export ARCHIVE --target NAME --out FILE` (export_command.cpp)
+void add_merge_command(CLI::App& app);    ///< `xparam merge SHARD.h5... --out ARCHIVE.h5` (merge_command.cpp)
+void add_layout_command(CLI::App& app);  ///< `xparam layout --source S ... --out DIR [--check]` (layout_command.cpp)
 
 }  // namespace xparam::cli

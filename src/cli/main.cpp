@@ -11,7 +11,13 @@ int main(int argc, char** argv) {
   CLI::App app{"xparam: cross-parameterize a template mesh against many target meshes"};
   app.set_version_flag("--version", std::string("xparam ") + xparam::kVersion + " (" + xparam::kGitRevision + ")");
   app.require_subcommand(1);
-
+  xparam::cli::add_check_command(app);
+  xparam::cli::add_batch_command(app);
+  xparam::cli::add_layout_command(app);
+  xparam::cli::add_pair_command(app);
+  xparam::cli::add_inspect_command(app);
+  xparam::cli::add_export_command(app);
+  xparam::cli::add_merge_command(app);
 
   try {
     app.parse(argc, argv);
@@ -19,6 +25,10 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const xparam::Error& e) {
     std::cerr << "xparam: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    // Not an xparam::Error: a system failure (memory, file system) rather than a bad input.
+    std::cerr << "xparam: unexpected error: " << e.what() << "\n";
     return 1;
   }
   return 0;

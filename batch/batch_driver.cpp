@@ -1,0 +1,173 @@
+#include "batch/batch_driver.h"
+
+#include "batch/target_job.h"
+#include "core/errors.h"
+#include "io/archive_commit.h"
+
+#include <nlohmann/json.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <mutex>
+
+namespace xparam {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+TargetOutcome outcome_of(const TargetRecord& record) {
+  TargetOutcome outcome;
+  outcome.name = record.name;
+  outcome.ok = record.ok;
+  outcome.error = record.error;
+  outcome.ran = true;
+  outcome.metrics = record.metrics;
+  outcome.seconds = record.seconds.back();  // the "total" column
+  return outcome;
+}
+
+TargetOutcome outcome_of(const ArchiveTargetSummary& kept) {
+  TargetOutcome outcome;
+  outcome.name = kept.name;
+  outcome.ok = kept.ok;
+  outcome.error = kept.error;
+  outcome.metrics = kept.metrics;
+  return outcome;
+}
+
+// Indices into plan.targets of the targets to run.
+std::vector<std::size_t> runnable(const BatchPlan& plan) {
+  std::vector<std::size_t> indices;
+  for (std::size_t i = 0; i < plan.targets.size(); ++i)
+    if (plan.targets[i].action == TargetAction::Run) indices.push_back(i);
+  return indices;
+}
+
+// Run `body(k)` for k in [0, n) on `threads` workers, one index per task.
+template <typename Body>
+void run_parallel(int threads, std::size_t n, const Body& body) {
+  XP_ASSERT(threads >= 1);
+  const tbb::global_control cap(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, n, 1),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t k = range.begin(); k != range.end(); ++k) body(k);
+        },
+        tbb::simple_partitioner());
+  });
+}
+
+// The archive and the run's shared state behind one lock: commits, checkpoints and progress.
+class Committer {
+ public:
+  Committer(BatchArchive& archive, const BatchSettings& settings, std::size_t total,
+            const BatchProgressCallback& progress)
+      : archive_(archive), settings_(settings), progress_(progress) {
+    state_.total = total;
+  }
+
+  void commit(const TargetRecord& record, TargetOutcome& slot) {
+    const std::lock_guard lock(mutex_);
+    archive_.commit(record);
+    slot = outcome_of(record);
+    if (seconds_since(last_checkpoint_) >= settings_.checkpoint_seconds) {
+      archive_.assemble();
+      last_checkpoint_ = Clock::now();
+    }
+    ++state_.done;
+    if (!slot.ok) ++state_.failed;
+    state_.elapsed_seconds = seconds_since(start_);
+    state_.last = &slot;
+    if (progress_) progress_(state_);
+  }
+
+ private:
+  BatchArchive& archive_;
+  const BatchSettings& settings_;
+  const BatchProgressCallback& progress_;
+  std::mutex mutex_;
+  BatchProgress state_;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point last_checkpoint_ = Clock::now();
+};
+
+}  // namespace
+
+double BatchSummary::targets_per_second() const {
+  return ran > 0 && seconds > 0.0 ? static_cast<double>(ran) / seconds : 0.0;
+}
+
+std::string batch_options_json(const PairSettings& settings) {
+  nlohmann::ordered_json options;
+  options["placement"]["snap_tolerance"] = settings.placement.snap_tolerance;
+  options["placement"]["warn_snap_distance"] = settings.placement.warn_snap_distance;
+  options["layout"]["greedy_diagonals"] = settings.layout.greedy_diagonals;
+  return options.dump();
+}
+
+BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchSettings& settings,
+                       const BatchProgressCallback& progress) {
+  const Clock::time_point start = Clock::now();
+  const ArchiveProvenance provenance = current_provenance(batch_options_json(settings.pair));
+  BatchArchive archive =
+      settings.resume
+          ? BatchArchive::resume(settings.archive, prepared.record, provenance, settings.archive_settings)
+          : BatchArchive::create(settings.archive, prepared.record, provenance, settings.archive_settings);
+
+  BatchSummary summary;
+  summary.archive = settings.archive;
+  summary.shard = plan.shard;
+  summary.threads = settings.threads;
+  summary.discovered = plan.discovered;
+  summary.targets.resize(plan.targets.size());
+
+  // Kept targets: their outcome is what the archive holds (resume turned it into parts).
+  for (std::size_t i = 0; i < plan.targets.size(); ++i) {
+    if (plan.targets[i].action == TargetAction::Run) continue;
+    const std::string& name = plan.targets[i].spec.name;
+    if (!archive.is_committed(name))
+      throw ArchiveError(settings.archive.string() + ": target \"" + name +
+                         "\" was planned as kept but the archive does not hold it");
+    summary.targets[i] = outcome_of(ArchiveReader(target_part_path(settings.archive, name)).targets().front());
+    ++summary.kept;
+  }
+
+  const std::vector<std::size_t> to_run = runnable(plan);
+  Committer committer(archive, settings, to_run.size(), progress);
+  run_parallel(settings.threads, to_run.size(), [&](std::size_t k) {
+    const std::size_t i = to_run[k];
+    const TargetRecord record = run_target(prepared, plan.targets[i].spec, settings.pair);
+    committer.commit(record, summary.targets[i]);
+  });
+  summary.ran = to_run.size();
+
+  archive.finish(!settings.keep_parts);
+  summary.archive_targets = archive.committed().size();
+  for (const TargetOutcome& outcome : summary.targets) ++(outcome.ok ? summary.succeeded : summary.failed);
+  summary.seconds = seconds_since(start);
+  return summary;
+}
+
+std::vector<TargetOutcome> check_batch(const PreparedTemplate& prepared, const BatchPlan& plan, int threads) {
+  const std::vector<std::size_t> to_check = runnable(plan);
+  std::vector<TargetOutcome> outcomes(to_check.size());
+  run_parallel(threads, to_check.size(), [&](std::size_t k) {
+    const TargetSpec& spec = plan.targets[to_check[k]].spec;
+    TargetOutcome& outcome = outcomes[k];
+    outcome.name = spec.name;
+    outcome.error = check_target(prepared, spec);
+    outcome.ok = outcome.error.empty();
+  });
+  return outcomes;
+}
+
+}  // namespace xparam

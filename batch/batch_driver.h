@@ -1,0 +1,101 @@
+#pragma once
+/// \file
+/// A batch run: one prepared template against the targets of a plan, in parallel, every
+/// finished target committed to the archive on its own (io/archive_commit.h).
+///
+/// Parallelism: one tbb::task_arena of `threads` workers runs the targets (parallel_for,
+/// one target per task) and the parallel loops inside each target; a tbb::global_control
+/// caps TBB at the same count. Targets are independent and each is deterministic, and the
+/// archive is assembled in name order, so its datasets do not depend on `threads` or on the
+/// order in which targets finish (only /targets/timings does). Commits and checkpoints are
+/// serialized by one lock: a single writer for the archive.
+
+#include "batch/batch_plan.h"
+#include "batch/template_preparation.h"
+#include "io/archive_records.h"
+#include "io/archive_writer.h"
+#include "map/pair_mapping.h"
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace xparam {
+
+/// Options of run_batch.
+struct BatchSettings {
+  std::filesystem::path archive;  ///< the output ARCHIVE.h5 (its parts go to ARCHIVE.h5.parts)
+  int threads = 1;                ///< worker threads for all targets together, >= 1
+  /// Continue the archive (keep what it holds) instead of replacing it. Must match how the
+  /// plan was made (committed_targets for a resumed run).
+  bool resume = false;
+  /// Re-assemble ARCHIVE.h5 from the committed parts when this many seconds passed since the
+  /// last assembly (checked after each commit); a run killed later loses nothing committed,
+  /// and ARCHIVE.h5 is at most this stale. Seconds.
+  double checkpoint_seconds = 30.0;
+  /// Keep ARCHIVE.h5.parts after the final assembly (resume works either way).
+  bool keep_parts = false;
+  PairSettings pair;                       ///< the per-target pipeline's options
+  ArchiveWriteSettings archive_settings;   ///< compression, XDMF sidecar
+};
+
+/// What became of one target of the plan.
+struct TargetOutcome {
+  std::string name;
+  bool ok = false;
+  std::string error;       ///< why it failed; empty when ok
+  bool ran = false;        ///< false: kept from an earlier run of the archive (resume)
+  TargetMetrics metrics;   ///< the metrics row
+  double seconds = TargetMetrics::kNaN;  ///< wall-clock seconds of its job (total column); NaN when not run now
+};
+
+/// Progress after each finished target (called under the driver's lock, so calls never overlap).
+struct BatchProgress {
+  std::size_t done = 0;        ///< targets finished in this run so far
+  std::size_t total = 0;       ///< targets this run executes (the plan's Run actions)
+  std::size_t failed = 0;      ///< of `done`, how many failed
+  double elapsed_seconds = 0;  ///< since the first target started
+  const TargetOutcome* last = nullptr;  ///< the target that just finished
+};
+
+/// Receives progress; must not throw.
+using BatchProgressCallback = std::function<void(const BatchProgress&)>;
+
+/// The result of a run.
+struct BatchSummary {
+  std::filesystem::path archive;      ///< the archive written
+  Shard shard;                        ///< the shard covered
+  int threads = 1;                    ///< worker threads used
+  std::size_t discovered = 0;         ///< targets in the whole source
+  std::size_t ran = 0;                ///< targets executed by this run
+  std::size_t kept = 0;               ///< targets kept from an earlier run
+  std::size_t succeeded = 0;          ///< of the shard's targets (run or kept), how many are ok
+  std::size_t failed = 0;             ///< of the shard's targets (run or kept), how many failed
+  std::size_t archive_targets = 0;    ///< rows of the final archive (other shards' kept rows included)
+  double seconds = 0.0;               ///< wall-clock seconds of the run
+  std::vector<TargetOutcome> targets; ///< the shard's targets, by name
+
+  /// Targets per second over the targets executed (0 when none ran).
+  double targets_per_second() const;
+};
+
+/// The method options recorded in the archive's provenance (a resumed run must use the same):
+/// the PairSettings fields as a JSON object. Thread count and sharding are not in it.
+std::string batch_options_json(const PairSettings& settings);
+
+/// Run `plan` against `prepared`: create (or, with settings.resume, continue) the archive,
+/// run every target whose action is Run, commit each as it finishes, checkpoint, and assemble
+/// the final archive.
+/// \throw ArchiveError (or std::filesystem::filesystem_error) when the archive cannot be
+///   written or a resumed archive was started with another template or options: fatal, the
+///   committed parts stay for a later --resume. Target failures never throw: they are outcomes.
+BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchSettings& settings,
+                       const BatchProgressCallback& progress = {});
+
+/// What --dry-run does: check_target (batch/target_job.h) on every target the plan would run,
+/// in parallel on `threads` workers, without writing anything. Outcomes by name; `ran` false.
+std::vector<TargetOutcome> check_batch(const PreparedTemplate& prepared, const BatchPlan& plan, int threads);
+
+}  // namespace xparam

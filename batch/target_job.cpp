@@ -1,0 +1,210 @@
+#include "batch/target_job.h"
+
+#include "batch/file_order.h"
+#include "batch/ground_truth.h"
+#include "core/errors.h"
+#include "core/orientation.h"
+#include "io/anchor_reader.h"
+#include "io/mesh_loader.h"
+#include "io/sha256.h"
+
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cstddef>
+#include <optional>
+
+namespace xparam {
+namespace {
+
+// Column of a stage in StageSeconds (kTimingStages).
+enum Stage : std::size_t { kLoad, kAnchors, kLayout, kOptimize, kParameterize, kCompose, kOutputs, kTotal };
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// The target's inputs, read and checked against the template.
+struct LoadedTarget {
+  LoadedMesh loaded;
+  AnchorSet anchors;                      // face + barycentric anchors in the mesh's corner order
+  std::optional<std::vector<int>> ground_truth;
+};
+
+LoadedMesh load_target_mesh(const PreparedTemplate& prepared, const TargetSpec& target) {
+  LoadedMesh loaded = load_mesh(target.mesh);
+  const std::optional<int>& genus = loaded.report.genus;
+  const int template_genus = *prepared.loaded.report.genus;
+  if (!genus || *genus != template_genus)
+    throw InputError(target.mesh.string() + ": genus mismatch: the target has genus " +
+                     (genus ? std::to_string(*genus) : std::string("undefined")) + ", the template (" +
+                     prepared.record.mesh_file + ") genus " + std::to_string(template_genus));
+  return loaded;
+}
+
+// Anchors, matched by name against the template's (match_anchors throws naming both files),
+// and the ground truth when given.
+void read_target_inputs(const PreparedTemplate& prepared, const TargetSpec& target, LoadedTarget& out) {
+  out.anchors = anchors_in_mesh_order(read_anchors(target.anchors), out.loaded.orientation_flipped);
+  match_anchors(prepared.anchors, out.anchors);
+  if (!target.ground_truth.empty()) {
+    out.ground_truth = read_ground_truth(target.ground_truth);
+    check_ground_truth(*out.ground_truth, prepared.loaded.mesh.n_vertices(), out.loaded.mesh.n_vertices(),
+                       target.ground_truth);
+  }
+}
+
+Eigen::MatrixX3d vertex_matrix(const Mesh& mesh) {
+  Eigen::MatrixX3d vertices(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
+  for (VertexHandle v : mesh.vertices()) vertices.row(v.idx()) = position(mesh, v).transpose();
+  return vertices;
+}
+
+template <typename Vector>
+Eigen::VectorXd to_eigen_vector(const Vector& values) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i) out[static_cast<Eigen::Index>(i)] = values[i];
+  return out;
+}
+
+// The archive arrays and metrics of a finished mapping; barycentrics in the target file's order.
+void fill_outputs(const PairMapping& mapping, const LoadedTarget& target, TargetRecord& record) {
+  const bool flipped = target.loaded.orientation_flipped;
+  const auto n_vertices = static_cast<Eigen::Index>(mapping.correspondence.size());
+  record.remesh_vertices = mapping.remesh_vertices;
+  record.corr_face.resize(n_vertices);
+  record.corr_bary.resize(n_vertices, 3);
+  for (Eigen::Index v = 0; v < n_vertices; ++v) {
+    const SurfacePoint& point = mapping.correspondence[static_cast<std::size_t>(v)];
+    record.corr_face[v] = point.face;
+    record.corr_bary.row(v) = to_file_order(point.bary, flipped).transpose();
+  }
+  record.face_patch = Eigen::Map<const Eigen::VectorXi>(mapping.face_patch.data(),
+                                                        static_cast<Eigen::Index>(mapping.face_patch.size()));
+  record.face_l2_stretch = to_eigen_vector(mapping.distortion.face_l2_stretch);
+  record.face_angle_distortion = to_eigen_vector(mapping.distortion.face_angle_distortion);
+
+  for (const MappedCurve& curve : mapping.curves) {
+    TransferredCurve out;
+    const auto n_points = static_cast<Eigen::Index>(curve.points.size());
+    out.bary.resize(n_points, 3);
+    out.xyz.resize(n_points, 3);
+    for (Eigen::Index p = 0; p < n_points; ++p) {
+      const SurfacePoint& point = curve.points[static_cast<std::size_t>(p)];
+      out.face.push_back(point.face);
+      out.bary.row(p) = to_file_order(point.bary, flipped).transpose();
+      out.xyz.row(p) = curve.positions[static_cast<std::size_t>(p)].transpose();
+    }
+    record.curves.push_back(std::move(out));
+  }
+
+  TargetMetrics& metrics = record.metrics;
+  metrics.e_l2 = mapping.distortion.all.e_l2;
+  metrics.e_ang = mapping.distortion.all.e_ang;
+  metrics.stretch_max_sv = mapping.distortion.all.stretch_max_sv;
+  metrics.flipped_faces = static_cast<int>(mapping.quality.flipped_faces.size());
+  metrics.area_ratio = mapping.quality.area_ratio;
+  if (target.ground_truth)
+    metrics.gt_error =
+        ground_truth_error(mapping.remesh_vertices, *target.ground_truth, vertex_matrix(target.loaded.mesh));
+}
+
+// The error text of a failed target: the message, prefixed by the mesh file unless it already
+// names one of the target's files.
+std::string describe_failure(const TargetSpec& target, const std::string& message) {
+  for (const std::filesystem::path* file : {&target.mesh, &target.anchors, &target.ground_truth})
+    if (!file->empty() && message.find(file->string()) != std::string::npos) return message;
+  return (target.mesh.empty() ? target.name : target.mesh.string()) + ": " + message;
+}
+
+std::string digest_or_empty(const std::filesystem::path& file) {
+  if (file.empty()) return {};
+  try {
+    return sha256_file_hex(file);
+  } catch (const InputError&) {
+    return {};  // unreadable: the load that follows reports why
+  }
+}
+
+void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, const PairSettings& settings,
+                TargetRecord& record) {
+  if (!target.problem.empty()) throw InputError(target.problem);
+  Stopwatch watch;
+  LoadedTarget loaded;
+  loaded.loaded = load_target_mesh(prepared, target);
+  record.seconds[kLoad] = watch.lap();
+  read_target_inputs(prepared, target, loaded);
+  const double reading_anchors = watch.lap();
+
+  // Isolated: a thread waiting inside this target's parallel loops never picks up another
+  // whole target, so at most -j targets are in memory at once.
+  const PairMapping mapping = tbb::this_task_arena::isolate([&] {
+    return map_pair(prepared.loaded.mesh, prepared.anchors, loaded.loaded.mesh, loaded.anchors, prepared.curves,
+                    settings);
+  });
+  watch.lap();
+  record.seconds[kAnchors] = reading_anchors + mapping.seconds.anchors;
+  record.seconds[kLayout] = mapping.seconds.layout;
+  record.seconds[kOptimize] = mapping.seconds.optimize;
+  record.seconds[kParameterize] = mapping.seconds.parameterize;
+  record.seconds[kCompose] = mapping.seconds.compose;
+  fill_outputs(mapping, loaded, record);
+  record.seconds[kOutputs] = mapping.seconds.metrics + watch.lap();
+  record.ok = true;
+}
+
+}  // namespace
+
+TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& target, const PairSettings& settings) {
+  Stopwatch total;
+  TargetRecord record;
+  record.name = target.name;
+  record.mesh_file = target.mesh.string();
+  record.anchors_file = target.anchors.string();
+  record.mesh_sha256 = digest_or_empty(target.mesh);
+  record.anchors_sha256 = digest_or_empty(target.anchors);
+  // A failed record keeps only what identifies it: the archive fills its rows with NaN / -1.
+  const auto fail = [&](const std::string& message) {
+    TargetRecord failed;
+    failed.name = record.name;
+    failed.mesh_file = record.mesh_file;
+    failed.anchors_file = record.anchors_file;
+    failed.mesh_sha256 = record.mesh_sha256;
+    failed.anchors_sha256 = record.anchors_sha256;
+    failed.seconds = record.seconds;
+    failed.error = describe_failure(target, message);
+    record = std::move(failed);
+  };
+  try {
+    run_stages(prepared, target, settings, record);
+  } catch (const std::exception& e) {
+    fail(e.what());
+  } catch (...) {
+    fail("an exception that is not a std::exception");
+  }
+  record.seconds[kTotal] = total.lap();
+  return record;
+}
+
+std::string check_target(const PreparedTemplate& prepared, const TargetSpec& target) {
+  try {
+    if (!target.problem.empty()) throw InputError(target.problem);
+    LoadedTarget loaded;
+    loaded.loaded = load_target_mesh(prepared, target);
+    read_target_inputs(prepared, target, loaded);
+    return {};
+  } catch (const std::exception& e) {
+    return describe_failure(target, e.what());
+  }
+}
+
+}  // namespace xparam

@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// The template side of a batch, prepared once and shared (read-only) by every target job:
+/// the loaded mesh, its anchors and feature curves, and the archive's TemplateRecord.
+
+#include "core/anchors.h"
+#include "core/feature_curves.h"
+#include "io/archive_records.h"
+#include "io/mesh_loader.h"
+
+#include <filesystem>
+#include <vector>
+
+namespace xparam {
+
+/// The template's files.
+struct TemplateInputs {
+  std::filesystem::path mesh;     ///< template mesh (OBJ, PLY, OFF, STL)
+  std::filesystem::path anchors;  ///< its anchors (JSON, .pp or text; io/anchor_reader.h)
+  std::filesystem::path curves;   ///< feature curves (JSON); empty when none
+};
+
+/// Everything a target job needs from the template.
+struct PreparedTemplate {
+  LoadedMesh loaded;                 ///< the input mesh, outward oriented, provenance started
+  AnchorSet anchors;                 ///< as read; face + barycentric anchors in the mesh's corner order
+  std::vector<FeatureCurve> curves;  ///< checked against the mesh, in the mesh's corner order
+  /// The archive's /template: vertices and faces exactly as in the file (faces in the file's
+  /// corner order), anchors, curves as face + barycentrics in the file's corner order, SHA-256
+  /// of every file. An anchor not given as a vertex index is recorded at the input vertex
+  /// nearest to where it is placed (the corner of largest barycentric coordinate).
+  TemplateRecord record;
+};
+
+/// Load and check the template: a usable mesh of genus 0 (what the layout supports), anchors
+/// that place on it (indices in range, no two on one vertex, at least kMinAnchors), curves
+/// that are valid on it. Any failure here is fatal for the whole batch.
+/// \throw InputError naming the file and what is wrong
+PreparedTemplate prepare_template(const TemplateInputs& inputs);
+
+}  // namespace xparam

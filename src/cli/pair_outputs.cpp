@@ -1,0 +1,141 @@
+#include "cli/pair_outputs.h"
+
+#include "core/orientation.h"
+#include "io/mesh_writer.h"
+#include "io/text_file.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace xparam::cli {
+namespace {
+
+// Template faces as the template file lists them (the loader may have reversed them).
+std::vector<std::array<int, 3>> file_triangles(const LoadedMesh& mesh) {
+  std::vector<std::array<int, 3>> triangles;
+  triangles.reserve(mesh.mesh.n_faces());
+  for (FaceHandle f : mesh.mesh.faces()) {
+    std::array<int, 3> t{};
+    int k = 0;
+    for (VertexHandle v : mesh.mesh.fv_range(f)) t[k++] = v.idx();
+    if (mesh.orientation_flipped) std::swap(t[1], t[2]);
+    triangles.push_back(t);
+  }
+  return triangles;
+}
+
+std::vector<Eigen::Vector3d> rows(const Eigen::MatrixX3d& matrix) {
+  std::vector<Eigen::Vector3d> result(matrix.rows());
+  for (int i = 0; i < matrix.rows(); ++i) result[i] = matrix.row(i).transpose();
+  return result;
+}
+
+// Blue at stretch 1 (isometric), through green, to red at stretch 2 and above.
+std::array<std::uint8_t, 3> stretch_color(double stretch) {
+  const double t = std::isfinite(stretch) ? std::clamp(stretch - 1.0, 0.0, 1.0) : 1.0;
+  const double red = std::clamp(2.0 * t - 1.0, 0.0, 1.0);
+  const double blue = std::clamp(1.0 - 2.0 * t, 0.0, 1.0);
+  const double green = 1.0 - red - blue;
+  return {static_cast<std::uint8_t>(std::lround(255 * red)), static_cast<std::uint8_t>(std::lround(255 * green)),
+          static_cast<std::uint8_t>(std::lround(255 * blue))};
+}
+
+std::string correspondence_csv(const LoadedMesh& target, const PairMapping& mapping) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "vertex,face,b0,b1,b2\n";
+  for (size_t v = 0; v < mapping.correspondence.size(); ++v) {
+    const SurfacePoint& p = mapping.correspondence[v];
+    const Eigen::Vector3d bary = to_file_order(p.bary, target.orientation_flipped);
+    out << v << ',' << p.face << ',' << bary[0] << ',' << bary[1] << ',' << bary[2] << '\n';
+  }
+  return out.str();
+}
+
+// JSON numbers cannot be infinite; a degenerate map reports null there.
+nlohmann::json number(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+
+nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping) {
+  const Layout& layout = mapping.layout.layout;
+  nlohmann::json metrics = {
+      {"source", source.path.string()},
+      {"target", target.path.string()},
+      {"E_L2", number(mapping.distortion.all.e_l2)},
+      {"E_ang", number(mapping.distortion.all.e_ang)},
+      {"stretch_max_sv", number(mapping.distortion.all.stretch_max_sv)},
+      {"degenerate_faces", mapping.distortion.degenerate_faces},
+      {"flipped_faces", mapping.quality.flipped_faces.size()},
+      {"area_ratio", number(mapping.quality.area_ratio)},
+      {"anchors", layout.n_anchors},
+      {"layout_edges", layout.edges.size()},
+      {"patches", layout.patches.size()},
+      {"refined_vertices", {mapping.layout.refined_vertices[0], mapping.layout.refined_vertices[1]}},
+      {"degenerate_lpbds", {mapping.fallback_polygons[0], mapping.fallback_polygons[1]}},
+      {"inverted_parameter_triangles", {mapping.inverted_triangles[0], mapping.inverted_triangles[1]}},
+      {"seconds",
+       {{"anchors", mapping.seconds.anchors},
+        {"layout", mapping.seconds.layout},
+        {"optimize", mapping.seconds.optimize},
+        {"parameterize", mapping.seconds.parameterize},
+        {"compose", mapping.seconds.compose},
+        {"metrics", mapping.seconds.metrics},
+        {"total", mapping.seconds.total}}},
+  };
+  nlohmann::json warnings = nlohmann::json::array();
+  for (const PlacedAnchors& placed : mapping.anchors) {
+    for (const std::string& warning : placed.warnings) warnings.push_back(warning);
+  }
+  metrics["warnings"] = warnings;
+  return metrics;
+}
+
+nlohmann::json curves_json(const LoadedMesh& target, const PairMapping& mapping) {
+  nlohmann::json curves = nlohmann::json::array();
+  for (const MappedCurve& curve : mapping.curves) {
+    nlohmann::json points = nlohmann::json::array();
+    for (size_t i = 0; i < curve.points.size(); ++i) {
+      const Eigen::Vector3d bary = to_file_order(curve.points[i].bary, target.orientation_flipped);
+      const Eigen::Vector3d& x = curve.positions[i];
+      points.push_back({{"face", curve.points[i].face},
+                        {"barycentric", {bary[0], bary[1], bary[2]}},
+                        {"position", {x[0], x[1], x[2]}}});
+    }
+    curves.push_back({{"name", curve.name}, {"closed", curve.closed}, {"points", points}});
+  }
+  return {{"mesh", target.path.string()}, {"curves", curves}};
+}
+
+}  // namespace
+
+void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& source, const LoadedMesh& target,
+                        const PairMapping& mapping) {
+  std::filesystem::create_directories(dir);
+  const std::vector<std::array<int, 3>> faces = file_triangles(source);
+  const std::vector<Eigen::Vector3d> remesh = rows(mapping.remesh_vertices);
+  write_obj(dir / "remesh.obj", remesh, faces);
+  write_text_atomically(dir / "correspondence.csv", correspondence_csv(target, mapping));
+
+  PlyAttributes attributes;
+  attributes.face_doubles.push_back({"l2_stretch", mapping.distortion.face_l2_stretch});
+  attributes.face_doubles.push_back({"angle_distortion", mapping.distortion.face_angle_distortion});
+  attributes.face_ints.push_back({"patch", mapping.face_patch});
+  for (double stretch : mapping.distortion.face_l2_stretch) attributes.face_colors.push_back(stretch_color(stretch));
+  write_ply(dir / "stretch.ply", remesh, faces, attributes);
+
+  if (!mapping.curves.empty()) {
+    write_text_atomically(dir / "curves.json", curves_json(target, mapping).dump(1) + "\n");
+    std::vector<std::vector<Eigen::Vector3d>> polylines;
+    for (const MappedCurve& curve : mapping.curves) {
+      polylines.push_back(curve.positions);
+      if (curve.closed && !curve.positions.empty()) polylines.back().push_back(curve.positions.front());
+    }
+    write_polylines_obj(dir / "curves.obj", polylines);
+  }
+  write_text_atomically(dir / "metrics.json", metrics_json(source, target, mapping).dump(1) + "\n");
+}
+
+}  // namespace xparam::cli

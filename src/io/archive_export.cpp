@@ -1,0 +1,49 @@
+#include "io/archive_export.h"
+
+#include "core/errors.h"
+#include "io/archive_reader.h"
+#include "io/mesh_writer.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace xparam {
+
+void export_remesh(const std::filesystem::path& archive, const std::string& name, const std::filesystem::path& out) {
+  std::string extension = out.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension != ".obj" && extension != ".ply")
+    throw InputError(out.string() + ": unknown mesh format (use .obj or .ply)");
+
+  const ArchiveReader reader(archive);
+  const std::optional<std::size_t> row = reader.find(name);
+  if (!row)
+    throw ArchiveError(archive.string() + ": no target named '" + name + "' (" +
+                       std::to_string(reader.targets().size()) + " targets; `xparam inspect` lists them)");
+  const TargetRecord target = reader.read_target(*row);
+  if (!target.ok) throw ArchiveError(archive.string() + ": target '" + name + "' failed, no remesh: " + target.error);
+  const TemplateRecord template_record = reader.read_template();
+
+  std::vector<Eigen::Vector3d> vertices(static_cast<std::size_t>(target.remesh_vertices.rows()));
+  for (std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = target.remesh_vertices.row(static_cast<Eigen::Index>(i));
+  std::vector<std::array<int, 3>> triangles(static_cast<std::size_t>(template_record.faces.rows()));
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    const auto row_f = static_cast<Eigen::Index>(f);
+    triangles[f] = {template_record.faces(row_f, 0), template_record.faces(row_f, 1), template_record.faces(row_f, 2)};
+  }
+  if (extension == ".obj") {
+    write_obj(out, vertices, triangles);
+    return;
+  }
+  PlyAttributes attributes;
+  attributes.face_ints.push_back({"patch", {target.face_patch.data(), target.face_patch.data() + target.face_patch.size()}});
+  attributes.face_doubles.push_back(
+      {"l2_stretch", {target.face_l2_stretch.data(), target.face_l2_stretch.data() + target.face_l2_stretch.size()}});
+  attributes.face_doubles.push_back(
+      {"angle_distortion",
+       {target.face_angle_distortion.data(), target.face_angle_distortion.data() + target.face_angle_distortion.size()}});
+  write_ply(out, vertices, triangles, attributes);
+}
+
+}  // namespace xparam

@@ -1,0 +1,18 @@
+#pragma once
+/// \file
+/// One target's remesh out of an archive, as a mesh file: the template's faces with the
+/// target's remesh vertices (what ParaView shows through the XDMF sidecar, as a standalone file).
+
+#include <filesystem>
+#include <string>
+
+namespace xparam {
+
+/// Write the remesh of target `name` of `archive` to `out`: OBJ when `out` ends in ".obj",
+/// PLY (binary, with per-face `patch`, `l2_stretch` and `angle_distortion`) when ".ply".
+/// Positions are written exactly (io/mesh_writer.h).
+/// \throw InputError for another extension; ArchiveError when the archive lacks the target
+///        (naming the archive) or the target failed (quoting its error).
+void export_remesh(const std::filesystem::path& archive, const std::string& name, const std::filesystem::path& out);
+
+}  // namespace xparam

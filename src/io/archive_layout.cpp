@@ -1,0 +1,53 @@
+#include "io/archive_layout.h"
+
+#include <cstddef>
+
+namespace xparam::archive_layout {
+
+MetricsRow to_row(const TargetMetrics& m) {
+  return {m.e_l2, m.e_ang, m.stretch_max_sv, m.flipped_faces, m.area_ratio, m.gt_error, m.swaps, m.merges};
+}
+
+TargetMetrics from_row(const MetricsRow& r) {
+  TargetMetrics m;
+  m.e_l2 = r.e_l2;
+  m.e_ang = r.e_ang;
+  m.stretch_max_sv = r.stretch_max_sv;
+  m.flipped_faces = r.flipped_faces;
+  m.area_ratio = r.area_ratio;
+  m.gt_error = r.gt_error;
+  m.swaps = r.swaps;
+  m.merges = r.merges;
+  return m;
+}
+
+h5::Handle metrics_type(bool packed) {
+  h5::Handle type(H5Tcreate(H5T_COMPOUND, sizeof(MetricsRow)), H5Tclose, "metrics type");
+  const hid_t f64 = packed ? H5T_IEEE_F64LE : H5T_NATIVE_DOUBLE;
+  const hid_t i32 = packed ? H5T_STD_I32LE : H5T_NATIVE_INT32;
+  const auto insert = [&](const char* name, std::size_t offset, hid_t member) {
+    h5::check(H5Tinsert(type.get(), name, offset, member), "metrics type", name);
+  };
+  // Column names are those of the paper and of schemas/archive.md.
+  insert("E_L2", offsetof(MetricsRow, e_l2), f64);
+  insert("E_ang", offsetof(MetricsRow, e_ang), f64);
+  insert("stretch_max_sv", offsetof(MetricsRow, stretch_max_sv), f64);
+  insert("flipped_faces", offsetof(MetricsRow, flipped_faces), i32);
+  insert("area_ratio", offsetof(MetricsRow, area_ratio), f64);
+  insert("gt_error", offsetof(MetricsRow, gt_error), f64);
+  insert("swaps", offsetof(MetricsRow, swaps), i32);
+  insert("merges", offsetof(MetricsRow, merges), i32);
+  if (packed) h5::check(H5Tpack(type.get()), "metrics type", "cannot pack");
+  return type;
+}
+
+h5::Handle status_type() {
+  h5::Handle type(H5Tenum_create(H5T_STD_I8LE), H5Tclose, "status type");
+  const std::int8_t failed = 0;
+  const std::int8_t ok = 1;
+  h5::check(H5Tenum_insert(type.get(), "failed", &failed), "status type", "failed");
+  h5::check(H5Tenum_insert(type.get(), "ok", &ok), "status type", "ok");
+  return type;
+}
+
+}  // namespace xparam::archive_layout

@@ -1,0 +1,86 @@
+#pragma once
+/// \file
+/// Reading an archive written by io/archive_writer.h (layout: schemas/archive.md).
+///
+/// The reader keeps the file open, so reading many targets (merge, export) opens it once.
+/// The small per-target columns (names, status, metrics, files) are read at open; the large
+/// arrays of a target only when asked for.
+
+#include "io/archive_hdf5.h"
+#include "io/archive_records.h"
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace xparam {
+
+/// The small columns of one target: everything but its arrays.
+struct ArchiveTargetSummary {
+  std::string name;            ///< target name
+  bool ok = false;             ///< status
+  std::string error;           ///< error text, empty when ok
+  std::string mesh_file;       ///< input mesh file
+  std::string anchors_file;    ///< input anchor file
+  std::string mesh_sha256;     ///< SHA-256 of the mesh file
+  std::string anchors_sha256;  ///< SHA-256 of the anchor file
+  TargetMetrics metrics;       ///< the metrics table row
+  StageSeconds seconds{};      ///< the timings row
+};
+
+/// An open archive.
+class ArchiveReader {
+ public:
+  /// Open `path` (an archive, or a one-target part file of io/archive_commit.h) read-only and
+  /// read its small columns.
+  /// \throw ArchiveError when it is missing, not HDF5, not an xparam archive, or of another schema version.
+  explicit ArchiveReader(const std::filesystem::path& path);
+
+  /// The archive's file name.
+  const std::filesystem::path& path() const { return path_; }
+  /// Root attributes: who wrote it, with which options.
+  const ArchiveProvenance& provenance() const { return provenance_; }
+  /// Root attribute schema_version.
+  int schema_version() const { return schema_version_; }
+  /// Template vertex count (#V of every remesh).
+  std::size_t n_vertices() const { return n_vertices_; }
+  /// Template face count (#F of every remesh).
+  std::size_t n_faces() const { return n_faces_; }
+  /// Targets in archive (name) order.
+  const std::vector<ArchiveTargetSummary>& targets() const { return targets_; }
+  /// Row of the target called `name`, if present.
+  std::optional<std::size_t> find(const std::string& name) const;
+
+  /// Whether this is a one-target part file (no template, no provenance).
+  bool is_part() const { return is_part_; }
+  /// The template with its anchors and curves. \throw ArchiveError for a part file.
+  TemplateRecord read_template() const;
+  /// Everything about the target in row `row` (arrays empty for a failed target).
+  /// \throw ArchiveError when row is out of range.
+  TargetRecord read_target(std::size_t row) const;
+
+ private:
+  std::filesystem::path path_;
+  h5::Handle file_;
+  ArchiveProvenance provenance_;
+  bool is_part_ = false;
+  int schema_version_ = 0;
+  std::size_t n_vertices_ = 0;
+  std::size_t n_faces_ = 0;
+  std::size_t n_curves_ = 0;
+  std::vector<ArchiveTargetSummary> targets_;
+};
+
+/// A whole archive in memory (tests and small archives).
+struct ArchiveContents {
+  ArchiveProvenance provenance;        ///< root attributes
+  TemplateRecord template_record;      ///< /template
+  std::vector<TargetRecord> targets;   ///< /targets rows in order
+};
+
+/// Read every dataset of the archive at `path`.
+ArchiveContents read_archive(const std::filesystem::path& path);
+
+}  // namespace xparam

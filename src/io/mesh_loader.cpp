@@ -1,0 +1,35 @@
+#include "io/mesh_loader.h"
+
+#include "core/errors.h"
+#include "core/mesh_builder.h"
+#include "core/orientation.h"
+#include "core/provenance.h"
+#include "io/mesh_reader.h"
+
+#include <string>
+
+namespace xparam {
+
+LoadedMesh load_mesh(const std::filesystem::path& path, const ValidationSettings& settings) {
+  const TriangleSoup soup = read_triangle_soup(path);
+  LoadedMesh loaded{path, Mesh(), validate_soup(soup, settings), false};
+  if (!loaded.report.usable) {
+    // One line (the batch driver records it per target) with the first problems, each of
+    // which names the file and the element.
+    const auto errors = loaded.report.errors();
+    std::string message = soup.source + " is not usable:";
+    for (size_t i = 0; i < errors.size() && i < static_cast<size_t>(kProblemsInLoadError); ++i)
+      message += (i == 0 ? " " : "; ") + errors[i]->message;
+    if (errors.size() > static_cast<size_t>(kProblemsInLoadError)) message += "; ...";
+    throw InputError(message);
+  }
+  loaded.mesh = build_mesh(soup);
+  if (signed_volume(loaded.mesh) < 0.0) {
+    loaded.mesh = build_mesh(soup, TriangleOrder::Reversed);
+    loaded.orientation_flipped = true;
+  }
+  init_provenance(loaded.mesh);
+  return loaded;
+}
+
+}  // namespace xparam

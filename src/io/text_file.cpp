@@ -1,0 +1,23 @@
+#include "io/text_file.h"
+
+#include "core/errors.h"
+
+#include <fstream>
+
+namespace xparam {
+
+void write_text_atomically(const std::filesystem::path& path, const std::string& content) {
+  std::filesystem::path temporary = path;
+  temporary += ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << content;
+    out.flush();
+    if (!out) throw InputError(path.string() + ": cannot be written");
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) throw InputError(path.string() + ": cannot be written (" + error.message() + ")");
+}
+
+}  // namespace xparam

@@ -1,0 +1,75 @@
+#include "layout/anchor_voronoi.h"
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+#include <map>
+#include <queue>
+#include <tuple>
+
+namespace xparam {
+
+AnchorVoronoi anchor_voronoi(const Mesh& mesh, const std::vector<VertexHandle>& anchors) {
+  const std::size_t n = mesh.n_vertices();
+  AnchorVoronoi voronoi;
+  voronoi.cell.assign(n, -1);
+  voronoi.distance.assign(n, std::numeric_limits<double>::infinity());
+  using Entry = std::tuple<double, int, int>;  // (distance, anchor, vertex)
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  for (int a = 0; a < static_cast<int>(anchors.size()); ++a) queue.emplace(0.0, a, anchors[a].idx());
+  std::vector<char> settled(n, 0);
+  while (!queue.empty()) {
+    const auto [d, a, v] = queue.top();
+    queue.pop();
+    if (settled[v]) continue;
+    settled[v] = 1;
+    voronoi.cell[v] = a;
+    voronoi.distance[v] = d;
+    const Eigen::Vector3d p = position(mesh, VertexHandle(v));
+    for (const VertexHandle w : mesh.vv_range(VertexHandle(v))) {
+      if (settled[w.idx()]) continue;
+      const double dw = d + (position(mesh, w) - p).norm();
+      if (dw < voronoi.distance[w.idx()]) {
+        voronoi.distance[w.idx()] = dw;
+        queue.emplace(dw, a, w.idx());
+      }
+    }
+  }
+  std::map<std::pair<int, int>, double> border;
+  for (const EdgeHandle e : mesh.edges()) {
+    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
+    const int u = mesh.from_vertex_handle(h).idx();
+    const int v = mesh.to_vertex_handle(h).idx();
+    const int cu = voronoi.cell[u];
+    const int cv = voronoi.cell[v];
+    if (cu == cv || cu < 0 || cv < 0) continue;
+    const double length = voronoi.distance[u] + mesh.calc_edge_length(e) + voronoi.distance[v];
+    const auto key = std::minmax(cu, cv);
+    const auto [it, inserted] = border.emplace(key, length);
+    if (!inserted) it->second = std::min(it->second, length);
+  }
+  for (const auto& [pair, length] : border) voronoi.neighbours.push_back({pair.first, pair.second, length});
+  return voronoi;
+}
+
+std::vector<double> delaunay_graph_distances(const AnchorVoronoi& voronoi, int n_anchors) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto n = static_cast<std::size_t>(n_anchors);
+  std::vector<double> d(n * n, inf);
+  for (std::size_t i = 0; i < n; ++i) d[i * n + i] = 0.0;
+  for (const AnchorNeighbours& pair : voronoi.neighbours) {
+    const auto a = static_cast<std::size_t>(pair.a);
+    const auto b = static_cast<std::size_t>(pair.b);
+    d[a * n + b] = d[b * n + a] = std::min(d[a * n + b], pair.length);
+  }
+  // Floyd-Warshall: anchors number in the tens to hundreds.
+  for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (d[i * n + k] == inf) continue;
+      for (std::size_t j = 0; j < n; ++j) d[i * n + j] = std::min(d[i * n + j], d[i * n + k] + d[k * n + j]);
+    }
+  }
+  return d;
+}
+
+}  // namespace xparam

@@ -1,0 +1,378 @@
+#include "layout/consistent_layout.h"
+
+#include "core/anchors.h"
+#include "core/errors.h"
+#include "core/provenance.h"
+#include "layout/anchor_voronoi.h"
+#include "layout/path_tracing.h"
+#include "layout/refinement.h"
+#include "layout/vertex_labels.h"
+
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+#include <sstream>
+
+namespace xparam {
+namespace {
+
+const char* side_name(int side) { return side == 0 ? "source" : "target"; }
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Closed, connected, genus 0: what a sphere-like layout needs.
+void require_sphere(const Mesh& mesh, const char* name) {
+  int boundary = 0;
+  for (const EdgeHandle e : mesh.edges()) boundary += mesh.is_boundary(e) ? 1 : 0;
+  if (boundary > 0) {
+    throw LayoutError(std::string(name) + " mesh has " + std::to_string(boundary) +
+                      " boundary edges; a layout needs a closed mesh");
+  }
+  std::vector<char> seen(mesh.n_vertices(), 0);
+  std::vector<VertexHandle> stack;
+  int components = 0;
+  for (const VertexHandle v : mesh.vertices()) {
+    if (seen[v.idx()]) continue;
+    ++components;
+    seen[v.idx()] = 1;
+    stack.assign(1, v);
+    while (!stack.empty()) {
+      const VertexHandle u = stack.back();
+      stack.pop_back();
+      for (const VertexHandle w : mesh.vv_range(u)) {
+        if (!seen[w.idx()]) {
+          seen[w.idx()] = 1;
+          stack.push_back(w);
+        }
+      }
+    }
+  }
+  if (components != 1) {
+    throw LayoutError(std::string(name) + " mesh has " + std::to_string(components) +
+                      " connected components; a layout needs one");
+  }
+  const long euler = static_cast<long>(mesh.n_vertices()) - static_cast<long>(mesh.n_edges()) +
+                     static_cast<long>(mesh.n_faces());
+  if (euler != 2) {
+    throw LayoutError(std::string(name) + " mesh has genus " + std::to_string((2 - euler) / 2) +
+                      " (Euler characteristic " + std::to_string(euler) + "); the layout needs genus 0");
+  }
+}
+
+void require_anchors(const Mesh& mesh, const std::vector<VertexHandle>& anchors, const char* name) {
+  std::vector<int> owner(mesh.n_vertices(), -1);
+  for (int k = 0; k < static_cast<int>(anchors.size()); ++k) {
+    const VertexHandle v = anchors[k];
+    if (!v.is_valid() || v.idx() >= static_cast<int>(mesh.n_vertices())) {
+      throw LayoutError(std::string(name) + " anchor " + std::to_string(k) + ": vertex " +
+                        std::to_string(v.idx()) + " is not a vertex of the mesh (" +
+                        std::to_string(mesh.n_vertices()) + " vertices)");
+    }
+    if (owner[v.idx()] >= 0) {
+      throw LayoutError(std::string(name) + " anchors " + std::to_string(owner[v.idx()]) + " and " +
+                        std::to_string(k) + " are the same vertex " + std::to_string(v.idx()));
+    }
+    owner[v.idx()] = k;
+  }
+}
+
+double chain_length(const Mesh& mesh, const std::vector<VertexHandle>& chain) {
+  double length = 0.0;
+  for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+    length += (position(mesh, chain[i + 1]) - position(mesh, chain[i])).norm();
+  return length;
+}
+
+// A candidate layout edge and its key (summed Delaunay-graph distance on both meshes).
+struct Candidate {
+  double key = 0.0;
+  int a = -1;
+  int b = -1;
+  bool operator<(const Candidate& other) const {
+    return std::tie(key, a, b) < std::tie(other.key, other.a, other.b);
+  }
+};
+
+// Union-find over anchors for the spanning tree.
+class Components {
+ public:
+  explicit Components(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int find(int a) {
+    while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
+    return a;
+  }
+  bool join(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return false;
+    parent_[std::max(a, b)] = std::min(a, b);
+    return true;
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+// The construction: shared combinatorics (edges, rotations) plus per-side labels.
+class LayoutBuilder {
+ public:
+  LayoutBuilder(ConsistentLayoutResult& result, const std::vector<double>& key)
+      : result_(result),
+        layout_(result.layout),
+        key_(key),
+        n_(layout_.n_anchors),
+        rotation_(n_),
+        joined_(static_cast<std::size_t>(n_) * n_, 0) {
+    for (int side = 0; side < 2; ++side) {
+      labels_[side] = label_vertices(layout_, side);
+      make_room(layout_.sides[side], labels_[side], layout_.sides[side].anchor_vertices);
+    }
+  }
+
+  void build_tree(const std::vector<Candidate>& candidates) {
+    Components components(n_);
+    for (const Candidate& c : candidates) {
+      if (components.find(c.a) == components.find(c.b)) continue;
+      // The sphere minus a forest is one face: the source path may use any corners, and the
+      // target path through the same corners exists.
+      const TracedPath path0 = trace(0, c.a, -1, c.b, -1);
+      XP_ASSERT_MSG(path0.found(),
+                    "no source path between anchors " << c.a << " and " << c.b << " in the forest");
+      const auto [ga, gb] = end_corners(0, path0);
+      const TracedPath path1 = trace(1, c.a, ga, c.b, gb);
+      XP_ASSERT_MSG(path1.found(),
+                    "no target path between anchors " << c.a << " and " << c.b << " in the forest");
+      add_edge(c.a, ga, c.b, gb, path0, path1);
+      components.join(c.a, c.b);
+      ++result_.tree_edges;
+    }
+    XP_ASSERT_EQ(result_.tree_edges, n_ - 1);
+  }
+
+  void add_greedy_diagonals(const std::vector<Candidate>& candidates) {
+    for (const Candidate& c : candidates) {
+      if (is_joined(c.a, c.b)) continue;
+      Choice best;
+      for (const auto& face : faces_of_rotation(layout_, rotation_)) {
+        for (const int ga : face) {
+          if (layout_from(layout_, ga) != c.a) continue;
+          for (const int gb : face) {
+            if (layout_from(layout_, gb) == c.b) consider(c.a, ga, c.b, gb, best);
+          }
+        }
+      }
+      if (best.found()) {
+        add_edge(c.a, best.ga, c.b, best.gb, best.paths[0], best.paths[1]);
+        ++result_.greedy_edges;
+      }
+    }
+  }
+
+  void complete() {
+    for (;;) {
+      const auto faces = faces_of_rotation(layout_, rotation_);
+      const auto open = std::find_if(faces.begin(), faces.end(), [](const auto& f) { return f.size() > 3; });
+      if (open == faces.end()) break;
+      // Valid diagonals of the face: corners of distinct anchors not joined yet, best key first.
+      std::vector<std::pair<Candidate, std::pair<int, int>>> options;
+      for (const int ga : *open) {
+        for (const int gb : *open) {
+          const int a = layout_from(layout_, ga);
+          const int b = layout_from(layout_, gb);
+          if (a >= b || is_joined(a, b)) continue;
+          options.push_back({{key_[static_cast<std::size_t>(a) * n_ + b], a, b}, {ga, gb}});
+        }
+      }
+      std::sort(options.begin(), options.end());
+      Choice chosen;
+      for (const auto& [c, corners] : options) {
+        consider(c.a, corners.first, c.b, corners.second, chosen);
+        if (chosen.found()) break;
+      }
+      if (!chosen.found()) {
+        std::ostringstream message;
+        message << "layout face with halfedges";
+        for (int h : *open) message << " " << h;
+        message << " has no traceable diagonal";
+        throw LayoutError(message.str());
+      }
+      add_edge(chosen.a, chosen.ga, chosen.b, chosen.gb, chosen.paths[0], chosen.paths[1]);
+      ++result_.completion_edges;
+    }
+  }
+
+  void finish() {
+    layout_.patches = faces_of_rotation(layout_, rotation_);
+    XP_ASSERT_EQ(static_cast<int>(layout_.edges.size()), 3 * n_ - 6);
+    XP_ASSERT_EQ(static_cast<int>(layout_.patches.size()), 2 * n_ - 4);
+    assign_patches(layout_);
+    for (int side = 0; side < 2; ++side) {
+      double total = 0.0;
+      for (const auto& chain : layout_.sides[side].chains)
+        total += chain_length(layout_.sides[side].mesh, chain);
+      result_.total_path_length[side] = total;
+    }
+  }
+
+ private:
+  // The best corner pair seen so far for one diagonal.
+  struct Choice {
+    int a = -1, ga = -1, b = -1, gb = -1;
+    std::array<TracedPath, 2> paths;
+    bool found() const { return a >= 0; }
+    double length() const { return paths[0].length + paths[1].length; }
+  };
+
+  // The corners (wedge names) a traced path leaves its first and enters its last anchor through.
+  std::array<int, 2> end_corners(int side, const TracedPath& path) const {
+    const LayoutSide& s = layout_.sides[side];
+    const auto& v = path.vertices;
+    return {wedge_of(s, labels_[side], s.mesh.find_halfedge(v.front(), v[1])),
+            wedge_of(s, labels_[side], s.mesh.find_halfedge(v.back(), v[v.size() - 2]))};
+  }
+
+  bool is_joined(int a, int b) const { return joined_[static_cast<std::size_t>(a) * n_ + b] != 0; }
+
+  TracedPath trace(int side, int a, int ga, int b, int gb) {
+    const LayoutSide& s = layout_.sides[side];
+    const auto first = wedge_vertices(s, labels_[side], corner_wedge(layout_, side, a, ga));
+    const auto last = wedge_vertices(s, labels_[side], corner_wedge(layout_, side, b, gb));
+    return trace_path(s.mesh, labels_[side], s.anchor_vertices[a], first, s.anchor_vertices[b], last,
+                      scratch_[side]);
+  }
+
+  // Trace corner ga -> corner gb on both meshes (independent searches, run in parallel) and keep
+  // the pair when it is shorter in sum than `best`.
+  void consider(int a, int ga, int b, int gb, Choice& best) {
+    std::array<TracedPath, 2> paths;
+    tbb::parallel_invoke([&] { paths[0] = trace(0, a, ga, b, gb); },
+                         [&] { paths[1] = trace(1, a, ga, b, gb); });
+    if (!paths[0].found() || !paths[1].found()) return;
+    if (best.found() && paths[0].length + paths[1].length >= best.length()) return;
+    best = {a, ga, b, gb, std::move(paths)};
+  }
+
+  // Insert layout edge a -> b leaving a just counter-clockwise of ga and entering b just
+  // counter-clockwise of gb (-1: the anchor had no edge yet), embedded by the two paths.
+  void add_edge(int a, int ga, int b, int gb, const TracedPath& path0, const TracedPath& path1) {
+    const int e = static_cast<int>(layout_.edges.size());
+    layout_.edges.push_back({{a, b}});
+    const std::array<const TracedPath*, 2> paths = {&path0, &path1};
+    for (int side = 0; side < 2; ++side) {
+      LayoutSide& s = layout_.sides[side];
+      s.chains.push_back(paths[side]->vertices);
+      label_chain(labels_[side], e, s.chains.back());
+    }
+    insert_after(a, ga, 2 * e);
+    insert_after(b, gb, 2 * e + 1);
+    joined_[static_cast<std::size_t>(a) * n_ + b] = joined_[static_cast<std::size_t>(b) * n_ + a] = 1;
+    for (int side = 0; side < 2; ++side) {
+      LayoutSide& s = layout_.sides[side];
+      make_room(s, labels_[side], std::vector<VertexHandle>(s.chains.back()));
+    }
+  }
+
+  void insert_after(int anchor, int g, int h) {
+    auto& rotation = rotation_[anchor];
+    if (g < 0) {
+      XP_ASSERT(rotation.empty());
+      rotation.push_back(h);
+      return;
+    }
+    const auto it = std::find(rotation.begin(), rotation.end(), g);
+    XP_ASSERT(it != rotation.end());
+    rotation.insert(it + 1, h);
+  }
+
+  ConsistentLayoutResult& result_;
+  Layout& layout_;
+  const std::vector<double>& key_;
+  int n_;
+  std::vector<std::vector<int>> rotation_;  // outgoing layout halfedges per anchor, counter-clockwise
+  std::vector<char> joined_;                // n x n: anchors already joined by an edge
+  std::array<VertexLabels, 2> labels_;
+  std::array<TraceScratch, 2> scratch_;
+};
+
+}  // namespace
+
+ConsistentLayoutResult build_consistent_layout(const Mesh& source,
+                                               const std::vector<VertexHandle>& source_anchors,
+                                               const Mesh& target,
+                                               const std::vector<VertexHandle>& target_anchors,
+                                               const ConsistentLayoutSettings& settings) {
+  const int n = static_cast<int>(source_anchors.size());
+  if (static_cast<int>(target_anchors.size()) != n) {
+    throw LayoutError("source has " + std::to_string(n) + " anchors but target has " +
+                      std::to_string(target_anchors.size()));
+  }
+  if (n < kMinAnchors) {
+    throw LayoutError("a layout needs at least " + std::to_string(kMinAnchors) + " anchors; got " +
+                      std::to_string(n));
+  }
+  const std::array<const Mesh*, 2> meshes = {&source, &target};
+  const std::array<const std::vector<VertexHandle>*, 2> anchors = {&source_anchors, &target_anchors};
+  for (int side = 0; side < 2; ++side) {
+    require_sphere(*meshes[side], side_name(side));
+    require_anchors(*meshes[side], *anchors[side], side_name(side));
+  }
+
+  ConsistentLayoutResult result;
+  result.settings = settings;
+  Layout& layout = result.layout;
+  layout.n_anchors = n;
+  std::array<std::size_t, 2> input_vertices{};
+  for (int side = 0; side < 2; ++side) {
+    LayoutSide& s = layout.sides[side];
+    s.mesh = *meshes[side];
+    if (!has_provenance(s.mesh)) init_provenance(s.mesh);
+    s.anchor_vertices = *anchors[side];
+    input_vertices[side] = s.mesh.n_vertices();
+  }
+
+  auto start = std::chrono::steady_clock::now();
+  std::array<AnchorVoronoi, 2> voronoi;
+  tbb::parallel_invoke([&] { voronoi[0] = anchor_voronoi(source, source_anchors); },
+                       [&] { voronoi[1] = anchor_voronoi(target, target_anchors); });
+  const std::vector<double> d0 = delaunay_graph_distances(voronoi[0], n);
+  const std::vector<double> d1 = delaunay_graph_distances(voronoi[1], n);
+  std::vector<double> key(d0.size());
+  for (std::size_t i = 0; i < key.size(); ++i) key[i] = d0[i] + d1[i];
+  std::vector<Candidate> candidates;
+  for (const auto& v : voronoi) {
+    for (const AnchorNeighbours& pair : v.neighbours) {
+      candidates.push_back({key[static_cast<std::size_t>(pair.a) * n + pair.b], pair.a, pair.b});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(
+      std::unique(candidates.begin(), candidates.end(),
+                  [](const Candidate& x, const Candidate& y) { return x.a == y.a && x.b == y.b; }),
+      candidates.end());
+  LayoutBuilder builder(result, key);
+  result.seconds.candidates = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  builder.build_tree(candidates);
+  result.seconds.tree = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  if (settings.greedy_diagonals) builder.add_greedy_diagonals(candidates);
+  builder.complete();
+  result.seconds.diagonals = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  builder.finish();
+  result.seconds.patches = seconds_since(start);
+  for (int side = 0; side < 2; ++side) {
+    result.refined_vertices[side] =
+        static_cast<int>(layout.sides[side].mesh.n_vertices() - input_vertices[side]);
+  }
+  return result;
+}
+
+}  // namespace xparam

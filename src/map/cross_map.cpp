@@ -1,0 +1,154 @@
+#include "map/cross_map.h"
+
+#include "core/errors.h"
+#include "core/provenance.h"
+#include "param/convex_polygon.h"
+
+#include <tbb/parallel_for.h>
+
+#include <limits>
+#include <optional>
+
+namespace xparam {
+namespace {
+
+// Barycentrics of p in the 2-D triangle (a, b, c).
+Eigen::Vector3d barycentric_2d(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                               const Eigen::Vector2d& c) {
+  const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+  const double s = ((p.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (p.y() - a.y())) / det;
+  const double t = ((b.x() - a.x()) * (p.y() - a.y()) - (p.x() - a.x()) * (b.y() - a.y())) / det;
+  return {1.0 - s - t, s, t};
+}
+
+}  // namespace
+
+struct CrossMap::Impl {
+  const Layout* layout = nullptr;
+  std::array<const Mesh*, 2> inputs{};
+  std::array<SidePatches, 2> sides;
+  std::array<std::vector<PatchParameterizationResult>, 2> params;
+  std::vector<std::optional<PointLocator>> target_locators;  // #patches, over the target patch parameterizations
+  std::vector<std::vector<int>> source_refined_faces;  // #source input faces: refined faces inside it
+
+  // Source domain point -> target domain point -> target surface.
+  MappedPoint map_from_source_domain(int patch, const Eigen::Vector2d& uv_source) const {
+    const std::vector<Eigen::Vector2d>& from = sides[0].patches[patch].polygon;
+    const std::vector<Eigen::Vector2d>& to = sides[1].patches[patch].polygon;
+    const Eigen::Vector3d w = barycentric_2d(uv_source, from[0], from[1], from[2]);
+    const Eigen::Vector2d uv_target = w[0] * to[0] + w[1] * to[1] + w[2] * to[2];
+
+    const PointLocation hit = target_locators[patch]->locate(uv_target);
+    const DiskPatch& target_patch = sides[1].patches[patch];
+    const std::array<int, 3>& corners = target_patch.triangles[hit.triangle];
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) point += hit.bary[k] * target_patch.positions[corners[k]];
+
+    const Mesh& refined = layout->sides[1].mesh;
+    const int refined_face = sides[1].triangle_faces[patch][hit.triangle];
+    MappedPoint result;
+    result.on_input = to_input_point(refined, *inputs[1], refined.face_handle(refined_face), point);
+    result.position = position(*inputs[1], result.on_input);
+    result.patch = patch;
+    result.clamp_distance = hit.distance;
+    return result;
+  }
+
+  MappedPoint map_source_face_point(int refined_face, const Eigen::Vector3d& bary) const {
+    const Mesh& mesh = layout->sides[0].mesh;
+    const int patch = patch_of(mesh, mesh.face_handle(refined_face));
+    const std::array<int, 3>& corners = sides[0].face_corners[refined_face];
+    const std::vector<Eigen::Vector2d>& uv = params[0][patch].uv;
+    const Eigen::Vector2d uv_source = bary[0] * uv[corners[0]] + bary[1] * uv[corners[1]] + bary[2] * uv[corners[2]];
+    return map_from_source_domain(patch, uv_source);
+  }
+};
+
+CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& inputs) : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.layout = &layout;
+  m.inputs = inputs;
+  for (int side = 0; side < 2; ++side) {
+    m.sides[side] = extract_patches(layout, side);
+    m.params[side] = parameterize_patches(m.sides[side].patches);
+  }
+
+  // A locator over each target patch's domain.
+  const int n_patches = static_cast<int>(layout.patches.size());
+  m.target_locators.resize(n_patches);
+  tbb::parallel_for(0, n_patches, [&](int p) {
+    m.target_locators[p].emplace(m.params[1][p].uv, m.sides[1].patches[p].triangles);
+  });
+
+  const Mesh& source = layout.sides[0].mesh;
+  m.source_refined_faces.resize(inputs[0]->n_faces());
+  for (FaceHandle f : source.faces()) m.source_refined_faces[input_face(source, f)].push_back(f.idx());
+}
+
+CrossMap::~CrossMap() = default;
+CrossMap::CrossMap(CrossMap&&) noexcept = default;
+CrossMap& CrossMap::operator=(CrossMap&&) noexcept = default;
+
+MappedPoint CrossMap::map_vertex(int v) const {
+  const Impl& m = *impl_;
+  const Mesh& mesh = m.layout->sides[0].mesh;
+  // A vertex on a curve belongs to several patches; the smallest patch id decides, so the
+  // choice depends only on the layout (both choices give the same image up to rounding).
+  int best_face = -1;
+  int best_patch = std::numeric_limits<int>::max();
+  for (FaceHandle f : mesh.vf_range(mesh.vertex_handle(v))) {
+    const int p = patch_of(mesh, f);
+    if (p < best_patch || (p == best_patch && f.idx() < best_face)) {
+      best_patch = p;
+      best_face = f.idx();
+    }
+  }
+  XP_ASSERT_MSG(best_face >= 0, "template vertex " << v << " has no face");
+  Eigen::Vector3d bary = Eigen::Vector3d::Zero();
+  int k = 0;
+  for (VertexHandle w : mesh.fv_range(mesh.face_handle(best_face))) bary[k++] = (w.idx() == v) ? 1.0 : 0.0;
+  return m.map_source_face_point(best_face, bary);
+}
+
+MappedPoint CrossMap::map_input_point(const SurfacePoint& point) const {
+  const Impl& m = *impl_;
+  const Mesh& mesh = m.layout->sides[0].mesh;
+  const Eigen::Vector3d p = position(*m.inputs[0], point);
+  // The refined piece of the input face that contains p: the one whose smallest barycentric is largest.
+  int best_face = -1;
+  double best_min = -std::numeric_limits<double>::infinity();
+  Eigen::Vector3d best_bary = Eigen::Vector3d::Zero();
+  for (int f : m.source_refined_faces[point.face]) {
+    Eigen::Vector3d corners[3];
+    int k = 0;
+    for (VertexHandle w : mesh.fv_range(mesh.face_handle(f))) corners[k++] = position(mesh, w);
+    const Eigen::Vector3d bary = barycentric(p, corners[0], corners[1], corners[2]);
+    if (bary.minCoeff() > best_min) {
+      best_min = bary.minCoeff();
+      best_face = f;
+      best_bary = bary;
+    }
+  }
+  XP_ASSERT_MSG(best_face >= 0, "template input face " << point.face << " has no refined face");
+  for (int k = 0; k < 3; ++k) best_bary[k] = std::max(best_bary[k], 0.0);
+  return m.map_source_face_point(best_face, best_bary / best_bary.sum());
+}
+
+std::array<int, 2> CrossMap::inverted_triangles() const {
+  std::array<int, 2> count{};
+  for (int side = 0; side < 2; ++side) {
+    for (size_t p = 0; p < impl_->params[side].size(); ++p) {
+      const std::vector<Eigen::Vector2d>& uv = impl_->params[side][p].uv;
+      for (const std::array<int, 3>& t : impl_->sides[side].patches[p].triangles) {
+        if (signed_area2(uv[t[0]], uv[t[1]], uv[t[2]]) <= 0.0) ++count[side];
+      }
+    }
+  }
+  return count;
+}
+
+std::array<int, 2> CrossMap::fallback_polygons() const {
+  return {impl_->sides[0].fallback_polygons, impl_->sides[1].fallback_polygons};
+}
+
+}  // namespace xparam

@@ -1,0 +1,70 @@
+#pragma once
+/// \file
+/// The composed bijective map Gamma = Gamma_s . Gamma_st . Gamma_t^-1 (paper eq. 1) of a
+/// consistent layout with triangular patches (ARCHITECTURE steps 7-8).
+///
+/// Every patch of both sides is parameterized onto its LPBD triangle (mean-value weights,
+/// param/patch_parameterization.h); Gamma_st is the affine map between the two LPBD triangles
+/// of a patch; a point of the template is carried to its patch's source domain, across to the
+/// target domain, located in the target patch's parameterization, and reported on the target's
+/// input mesh through provenance. Boundaries are placed by arc length on both sides, so a point
+/// on a curve lands on the same point of the target curve from either patch: the map is
+/// continuous, and bijective because every piece is.
+
+#include "core/surface_point.h"
+#include "layout/layout.h"
+#include "map/patch_extraction.h"
+#include "param/patch_parameterization.h"
+#include "param/point_locator.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace xparam {
+
+/// Where a template point lands on the target.
+struct MappedPoint {
+  SurfacePoint on_input;           ///< target input face + barycentrics (fv order of the input target mesh)
+  Eigen::Vector3d position;        ///< the 3-D point on the target
+  int patch = -1;                  ///< the layout patch it lies in
+  /// How far (target LPBD units) the point fell outside its target domain before it was
+  /// clamped onto it: rounding-sized in a healthy map.
+  double clamp_distance = 0.0;
+};
+
+/// The map between the two sides of a layout, built once and queried for any template point.
+class CrossMap {
+ public:
+  /// Parameterize every patch of both sides (in parallel) and index the target domains.
+  /// `inputs[s]` is the input mesh side s was refined from.
+  /// \pre layout consistent with triangular patches and patch ids assigned on both sides
+  /// \throw ParamError when a patch cannot be parameterized
+  CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& inputs);
+  ~CrossMap();
+  CrossMap(CrossMap&&) noexcept;
+  CrossMap& operator=(CrossMap&&) noexcept;
+
+  /// Image of vertex v of the refined template mesh (every input vertex keeps its index there).
+  MappedPoint map_vertex(int v) const;
+
+  /// Image of a point of the template's input mesh (a curve point, say).
+  MappedPoint map_input_point(const SurfacePoint& point) const;
+
+  /// Patches of each side whose LPBD was degenerate and replaced (patch_extraction.h).
+  std::array<int, 2> fallback_polygons() const;
+
+  /// Triangles of each side whose parameterization has non-positive signed area. Zero on both
+  /// sides certifies the map bijective (each patch map is then a homeomorphism onto its
+  /// convex LPBD); mean-value weights guarantee it in exact arithmetic, this counts what
+  /// floating point did to very compressed regions.
+  std::array<int, 2> inverted_triangles() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace xparam

@@ -1,0 +1,144 @@
+#include "map/pair_mapping.h"
+
+#include "core/errors.h"
+#include "core/provenance.h"
+#include "map/cross_map.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <map>
+
+namespace xparam {
+namespace {
+
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+std::vector<VertexHandle> anchor_vertices(const PlacedAnchors& placed) {
+  std::vector<VertexHandle> vertices;
+  vertices.reserve(placed.anchors.size());
+  for (const PlacedAnchor& anchor : placed.anchors) vertices.push_back(anchor.vertex);
+  return vertices;
+}
+
+// The patch of each template input face: the one holding most of its area among its refined
+// pieces (a layout curve may cut an input face); ties go to the smaller patch id.
+std::vector<int> input_face_patches(const Mesh& refined, int n_input_faces) {
+  std::vector<std::map<int, double>> area(n_input_faces);
+  for (FaceHandle f : refined.faces()) {
+    area[input_face(refined, f)][patch_of(refined, f)] += refined.calc_face_area(f);
+  }
+  std::vector<int> patch(n_input_faces, -1);
+  for (int f = 0; f < n_input_faces; ++f) {
+    double best = -1.0;
+    for (const auto& [p, a] : area[f]) {
+      if (a > best) {
+        best = a;
+        patch[f] = p;
+      }
+    }
+  }
+  return patch;
+}
+
+// Vertex indices of every face in fv order, which is the file order of a loaded input mesh.
+std::vector<std::array<int, 3>> triangles_of(const Mesh& mesh) {
+  std::vector<std::array<int, 3>> triangles;
+  triangles.reserve(mesh.n_faces());
+  for (FaceHandle f : mesh.faces()) {
+    std::array<int, 3> corners{};
+    int k = 0;
+    for (VertexHandle v : mesh.fv_range(f)) corners[k++] = v.idx();
+    triangles.push_back(corners);
+  }
+  return triangles;
+}
+
+}  // namespace
+
+PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
+                     const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
+                     const PairSettings& settings, const StageCallback& on_stage) {
+  auto stage = [&](const char* name) {
+    if (on_stage) on_stage(name);
+  };
+  PairMapping result;
+  result.settings = settings;
+  Stopwatch total;
+  Stopwatch watch;
+
+  stage("anchors");
+  const AnchorSet matched = match_anchors(source_anchors, target_anchors);
+  Mesh source_refined = source;
+  Mesh target_refined = target;
+  result.anchors[0] = place_anchors(source_refined, source, source_anchors, settings.placement);
+  result.anchors[1] = place_anchors(target_refined, target, matched, settings.placement);
+  result.seconds.anchors = watch.lap();
+
+  stage("layout");
+  result.layout = build_consistent_layout(source_refined, anchor_vertices(result.anchors[0]), target_refined,
+                                          anchor_vertices(result.anchors[1]), settings.layout);
+  const Layout& layout = result.layout.layout;
+  result.seconds.layout = watch.lap();
+
+  stage("parameterize");
+  const CrossMap cross(layout, {&source, &target});
+  result.fallback_polygons = cross.fallback_polygons();
+  result.inverted_triangles = cross.inverted_triangles();
+  result.seconds.parameterize = watch.lap();
+
+  stage("compose");
+  // Refinement only appends vertices, so template input vertex i is refined vertex i.
+  const int n_vertices = static_cast<int>(source.n_vertices());
+  XP_ASSERT(layout.sides[0].mesh.n_vertices() >= source.n_vertices());
+  std::vector<MappedPoint> images(n_vertices);
+  tbb::parallel_for(0, n_vertices, [&](int v) { images[v] = cross.map_vertex(v); });
+  result.correspondence.resize(n_vertices);
+  result.remesh_vertices.resize(n_vertices, 3);
+  for (int v = 0; v < n_vertices; ++v) {
+    result.correspondence[v] = images[v].on_input;
+    result.remesh_vertices.row(v) = images[v].position.transpose();
+    result.max_clamp_distance = std::max(result.max_clamp_distance, images[v].clamp_distance);
+  }
+  result.face_patch = input_face_patches(layout.sides[0].mesh, static_cast<int>(source.n_faces()));
+  for (const FeatureCurve& curve : curves) {
+    MappedCurve mapped;
+    mapped.name = curve.name;
+    mapped.closed = curve.closed;
+    for (const SurfacePoint& point : curve.points) {
+      const MappedPoint image = cross.map_input_point(point);
+      mapped.points.push_back(image.on_input);
+      mapped.positions.push_back(image.position);
+      result.max_clamp_distance = std::max(result.max_clamp_distance, image.clamp_distance);
+    }
+    result.curves.push_back(std::move(mapped));
+  }
+  result.seconds.compose = watch.lap();
+
+  stage("metrics");
+  std::vector<Eigen::Vector3d> source_positions(n_vertices);
+  std::vector<Eigen::Vector3d> image_positions(n_vertices);
+  for (int v = 0; v < n_vertices; ++v) {
+    source_positions[v] = position(source, source.vertex_handle(v));
+    image_positions[v] = images[v].position;
+  }
+  const std::vector<std::array<int, 3>> faces = triangles_of(source);
+  result.distortion = measure_distortion(source_positions, image_positions, faces);
+  result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
+  result.seconds.metrics = watch.lap();
+  result.seconds.total = total.lap();
+  return result;
+}
+
+}  // namespace xparam

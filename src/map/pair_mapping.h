@@ -1,0 +1,83 @@
+#pragma once
+/// \file
+/// The whole per-pair pipeline on loaded data: anchors placed on both meshes, the consistent
+/// layout, the composed map, the remesh, transferred curves and distortion (ARCHITECTURE steps
+/// 2-9). Files are read and written elsewhere (src/io, src/cli, batch/); this takes meshes and
+/// anchor sets and returns arrays.
+
+#include "core/anchor_placement.h"
+#include "core/anchors.h"
+#include "core/feature_curves.h"
+#include "core/mesh.h"
+#include "core/surface_point.h"
+#include "layout/consistent_layout.h"
+#include "map/distortion.h"
+#include "map/remesh_quality.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace xparam {
+
+/// Options of map_pair. Defaults are what `xparam pair` and `xparam batch` use.
+struct PairSettings {
+  PlacementSettings placement;         ///< how anchors given as positions are put on the meshes
+  ConsistentLayoutSettings layout;     ///< the pre-step (layout/consistent_layout.h)
+};
+
+/// Wall-clock seconds of each stage of map_pair (not deterministic, never compared).
+struct PairSeconds {
+  double anchors = 0.0;       ///< matching and placing anchors on both meshes
+  double layout = 0.0;        ///< the consistent layout
+  double optimize = 0.0;      ///< base-domain optimization (paper sections 4-5)
+  double parameterize = 0.0;  ///< LPBDs and patch parameterizations of both sides
+  double compose = 0.0;       ///< mapping every template vertex and curve point
+  double metrics = 0.0;       ///< distortion and remesh quality
+  double total = 0.0;         ///< all of map_pair
+};
+
+/// One template curve carried onto the target.
+struct MappedCurve {
+  std::string name;
+  std::vector<SurfacePoint> points;        ///< on the target input mesh (face + barycentrics, fv order)
+  std::vector<Eigen::Vector3d> positions;  ///< the same points in 3-D
+  bool closed = false;
+};
+
+/// Everything one template/target pair yields.
+struct PairMapping {
+  /// #template input vertices: where each lands on the target's input mesh (face +
+  /// barycentrics in the fv order of the loaded target mesh).
+  std::vector<SurfacePoint> correspondence;
+  Eigen::MatrixX3d remesh_vertices;  ///< #V x 3: image of template vertex i
+  std::vector<int> face_patch;       ///< #template input faces: layout patch holding most of the face's area
+  DistortionResult distortion;       ///< per face and global L2-stretch and angle distortion (eq. 3, 5, 6)
+  RemeshQualityResult quality;       ///< flipped faces and area ratio of the remesh on the target
+  std::vector<MappedCurve> curves;   ///< the template's feature curves on the target, in input order
+  ConsistentLayoutResult layout;     ///< the layout on both (refined) meshes, for exports and counts
+  std::array<PlacedAnchors, 2> anchors;  ///< template and target anchors as placed (snap distances, warnings)
+  std::array<int, 2> fallback_polygons{};  ///< patches per side whose degenerate LPBD was replaced
+  std::array<int, 2> inverted_triangles{}; ///< parameterization triangles per side with non-positive area (0: bijective)
+  double max_clamp_distance = 0.0;   ///< largest clamp of a query onto its target domain (rounding-sized)
+  PairSeconds seconds;
+  PairSettings settings;
+};
+
+/// Progress callback: called with the name of each stage as it starts.
+using StageCallback = std::function<void(const std::string& stage)>;
+
+/// Map template `source` onto target `target`. The meshes are the loaded input meshes
+/// (io/mesh_loader.h: provenance initialised, outward orientation); anchor sets are matched by
+/// name (the target's reordered to the template's), then placed on refined copies.
+/// \throw InputError for anchors that do not match or cannot be placed
+/// \throw LayoutError when the meshes cannot be laid out (genus, components)
+/// \throw ParamError when a patch cannot be parameterized
+PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
+                     const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
+                     const PairSettings& settings = {}, const StageCallback& on_stage = {});
+
+}  // namespace xparam

@@ -1,0 +1,135 @@
+#include "map/remesh_quality.h"
+
+#include "core/errors.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <iterator>
+
+#include <string>
+
+namespace xparam {
+namespace {
+
+// Area-weighted vertex normals: the sum of the unnormalized normals of the incident faces.
+std::vector<Eigen::Vector3d> vertex_normals(const Mesh& target, double& total_area) {
+  std::vector<Eigen::Vector3d> normals(target.n_vertices(), Eigen::Vector3d::Zero());
+  total_area = 0.0;
+  for (FaceHandle f : target.faces()) {
+    Eigen::Vector3d x[3];
+    int ids[3];
+    int c = 0;
+    for (VertexHandle v : target.fv_range(f)) {
+      ids[c] = v.idx();
+      x[c++] = position(target, v);
+    }
+    const Eigen::Vector3d normal = (x[1] - x[0]).cross(x[2] - x[0]);
+    total_area += 0.5 * normal.norm();
+    for (int id : ids) normals[id] += normal;
+  }
+  return normals;
+}
+
+// The interpolated unit normal of the target at a surface point (zero where it vanishes).
+Eigen::Vector3d interpolated_normal(const Mesh& target, const std::vector<Eigen::Vector3d>& normals,
+                                    const SurfacePoint& point) {
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  int corner = 0;
+  for (VertexHandle v : target.fv_range(target.face_handle(point.face))) {
+    normal += point.bary[corner++] * normals[v.idx()].normalized();
+  }
+  const double length = normal.norm();
+  return length > 0.0 ? Eigen::Vector3d(normal / length) : Eigen::Vector3d::Zero();
+}
+
+// Target faces a surface point lies on: its face, plus the neighbours that share the vertex or
+// the edge it sits on (barycentrics within `tolerance` of 1 or 0), sorted ascending.
+std::vector<int> faces_touching(const Mesh& target, const SurfacePoint& point, double tolerance) {
+  const FaceHandle face = target.face_handle(point.face);
+  VertexHandle corners[3];
+  int k = 0;
+  for (VertexHandle v : target.fv_range(face)) corners[k++] = v;
+  std::vector<int> faces;
+  for (int i = 0; i < 3; ++i) {
+    if (point.bary[i] >= 1.0 - tolerance) {
+      for (FaceHandle f : target.vf_range(corners[i])) faces.push_back(f.idx());
+    }
+  }
+  if (faces.empty()) {
+    faces.push_back(point.face);
+    for (int i = 0; i < 3; ++i) {
+      if (point.bary[i] > tolerance) continue;
+      // On the edge opposite corner i: add the face across it.
+      const HalfedgeHandle h = target.find_halfedge(corners[(i + 1) % 3], corners[(i + 2) % 3]);
+      const FaceHandle across = target.opposite_face_handle(h);
+      if (across.is_valid()) faces.push_back(across.idx());
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  return faces;
+}
+
+// The lowest-index target face all three corners lie on, or -1.
+int common_face(const Mesh& target, const std::array<const SurfacePoint*, 3>& corners) {
+  constexpr double kOnBoundary = 1e-9;
+  std::vector<int> common = faces_touching(target, *corners[0], kOnBoundary);
+  for (int i = 1; i < 3 && !common.empty(); ++i) {
+    const std::vector<int> next = faces_touching(target, *corners[i], kOnBoundary);
+    std::vector<int> both;
+    std::set_intersection(common.begin(), common.end(), next.begin(), next.end(), std::back_inserter(both));
+    common.swap(both);
+  }
+  return common.empty() ? -1 : common.front();
+}
+
+}  // namespace
+
+RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>& faces,
+                                           const std::vector<Eigen::Vector3d>& positions,
+                                           const std::vector<SurfacePoint>& locations, const Mesh& target) {
+  if (positions.size() != locations.size()) {
+    throw ParamError("remesh quality: " + std::to_string(positions.size()) + " positions but " +
+                     std::to_string(locations.size()) + " target locations");
+  }
+  const int n_vertices = static_cast<int>(positions.size());
+  const int n_target_faces = static_cast<int>(target.n_faces());
+  for (int v = 0; v < n_vertices; ++v) {
+    if (locations[v].face < 0 || locations[v].face >= n_target_faces) {
+      throw ParamError("remesh quality: vertex " + std::to_string(v) + " lies on target face " +
+                       std::to_string(locations[v].face) + " of " + std::to_string(n_target_faces));
+    }
+  }
+
+  RemeshQualityResult result;
+  const std::vector<Eigen::Vector3d> normals = vertex_normals(target, result.target_area);
+
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const auto& t = faces[f];
+    for (int v : t) {
+      if (v < 0 || v >= n_vertices) {
+        throw ParamError("remesh quality: face " + std::to_string(f) + " has vertex " + std::to_string(v) + " of " +
+                         std::to_string(n_vertices));
+      }
+    }
+    const Eigen::Vector3d normal = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+    const double twice_area = normal.norm();
+    result.remesh_area += 0.5 * twice_area;
+    if (twice_area == 0.0) {
+      ++result.degenerate_faces;
+      continue;
+    }
+    Eigen::Vector3d reference = Eigen::Vector3d::Zero();
+    const int shared = common_face(target, {&locations[t[0]], &locations[t[1]], &locations[t[2]]});
+    if (shared >= 0) {
+      reference = to_eigen(target.calc_face_normal(target.face_handle(shared)));
+    } else {
+      for (int v : t) reference += interpolated_normal(target, normals, locations[v]);
+    }
+    if (normal.dot(reference) < 0.0) result.flipped_faces.push_back(static_cast<int>(f));
+  }
+  result.area_ratio = result.remesh_area / result.target_area;
+  return result;
+}
+
+}  // namespace xparam

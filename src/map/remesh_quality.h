@@ -1,0 +1,44 @@
+#pragma once
+/// \file
+/// Quality of a remesh (the template's faces on the target's surface, ARCHITECTURE step 9):
+/// faces that fold over (their normal opposes the target surface) and the area ratio.
+
+#include "core/mesh.h"
+#include "core/surface_point.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+namespace xparam {
+
+/// Flip test and area comparison of a remesh against the target surface.
+struct RemeshQualityResult {
+  std::vector<int> flipped_faces;  ///< remesh faces whose normal has a negative dot with the reference normal, ascending
+  int degenerate_faces = 0;        ///< remesh faces of zero area (neither flipped nor not)
+  double remesh_area = 0.0;        ///< total area of the remesh, target units^2
+  double target_area = 0.0;        ///< total area of the target mesh
+  double area_ratio = 0.0;         ///< remesh_area / target_area (1 when the remesh covers the target once)
+};
+
+/// Compare a remesh with the target surface it lies on.
+///
+/// Reference normal of remesh face (a, b, c): when its three corners lie on one common target
+/// face (a corner on a target vertex or edge lies on every face around it), the normal of that
+/// face — the remesh face then lies in that target face, so the comparison is exact (a remesh
+/// equal to the target has no flipped face even where the target has sharp creases). Otherwise
+/// the target's interpolated normal at the three corners, summed (each normalized): the
+/// interpolated normal at a surface point is sum_k bary_k * n(v_k) over the vertices of its
+/// target face, normalized, with n(v) the unit area-weighted vertex normal, continuous across
+/// target edges and vertices. A face is flipped when dot(remesh normal, reference normal) < 0.
+/// \param faces      #F remesh faces (the template's faces), vertex ids
+/// \param positions  #V mapped 3-D positions of the remesh vertices
+/// \param locations  #V location of every remesh vertex on `target`
+/// \throw ParamError when sizes differ, an index is out of range or a location's face is not a
+/// face of `target`.
+RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>& faces,
+                                           const std::vector<Eigen::Vector3d>& positions,
+                                           const std::vector<SurfacePoint>& locations, const Mesh& target);
+
+}  // namespace xparam

@@ -1,0 +1,161 @@
+// Whole batch runs through the library: failures recorded while the rest completes, identical
+// datasets at any thread count, resume, and shards merged into one run's datasets.
+#include "batch/batch_driver.h"
+
+#include "batch/target_job.h"
+#include "batch_test_support.h"
+#include "core/errors.h"
+#include "io/archive_commit.h"
+#include "io/archive_merge.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace xparam {
+namespace {
+
+using test::fs::path;
+
+const PreparedTemplate& man() {
+  static const PreparedTemplate prepared = prepare_template(test::man_template());
+  return prepared;
+}
+
+BatchSummary run(const path& targets, const path& archive, int threads, const Shard& shard = {},
+                 const BatchProgressCallback& progress = {}) {
+  BatchSettings settings;
+  settings.archive = archive;
+  settings.threads = threads;
+  return run_batch(man(), plan_batch(discover_targets(targets), shard, {}, false), settings, progress);
+}
+
+BatchSummary resume(const path& targets, const path& archive, bool retry_failed, const PairSettings& pair = {}) {
+  BatchSettings settings;
+  settings.archive = archive;
+  settings.threads = 2;
+  settings.resume = true;
+  settings.pair = pair;
+  return run_batch(man(), plan_batch(discover_targets(targets), {}, committed_targets(archive), retry_failed),
+                   settings);
+}
+
+const TargetOutcome& outcome(const BatchSummary& summary, const std::string& name) {
+  for (const TargetOutcome& o : summary.targets)
+    if (o.name == name) return o;
+  throw std::runtime_error("no outcome " + name);
+}
+
+TEST(BatchDriver, FailuresAreRecordedAndThreadCountDoesNotChangeTheDatasets) {
+  const path dir = test::fresh_temp_dir("driver_threads");
+  test::copy_sample_targets(dir / "targets", {"woman", "woman_turned", "man_flipped", "man_bent"});
+  test::add_broken_targets(dir / "targets");
+
+  std::vector<std::size_t> done;
+  const BatchSummary one = run(dir / "targets", dir / "one.h5", 1, {}, [&](const BatchProgress& p) {
+    EXPECT_EQ(p.total, 8u);
+    ASSERT_NE(p.last, nullptr);
+    EXPECT_LE(p.failed, p.done);
+    done.push_back(p.done);
+  });
+  EXPECT_EQ(done, (std::vector<std::size_t>{1, 2, 3, 4, 5, 6, 7, 8}));
+  EXPECT_EQ(one.ran, 8u);
+  EXPECT_EQ(one.succeeded, 4u);
+  EXPECT_EQ(one.failed, 4u);
+  EXPECT_EQ(one.archive_targets, 8u);
+  for (const char* name : {"woman", "woman_turned", "man_flipped", "man_bent"}) {
+    const TargetOutcome& o = outcome(one, name);
+    EXPECT_TRUE(o.ok) << name << ": " << o.error;
+    // Same vertex order on every sample target: the ground truth is the identity. A mix-up of
+    // targets or vertex orders would put the mean error near half a body height.
+    EXPECT_LT(o.metrics.gt_error, 0.1) << name;
+  }
+  EXPECT_NE(outcome(one, "torus").error.find("genus mismatch"), std::string::npos);
+  EXPECT_NE(outcome(one, "no_anchors").error.find("no anchors"), std::string::npos);
+  EXPECT_NE(outcome(one, "unknown_name").error.find("NOT_A_LANDMARK"), std::string::npos);
+  EXPECT_NE(outcome(one, "truncated").error.find("truncated.obj"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(parts_directory(dir / "one.h5")));
+
+  const ArchiveReader reader(dir / "one.h5");
+  ASSERT_EQ(reader.targets().size(), 8u);
+  for (std::size_t i = 0; i < reader.targets().size(); ++i) {
+    const ArchiveTargetSummary& row = reader.targets()[i];
+    EXPECT_EQ(row.ok, outcome(one, row.name).ok);
+    EXPECT_EQ(row.error, outcome(one, row.name).error);
+    EXPECT_TRUE(std::isfinite(row.seconds.back())) << row.name;
+  }
+
+  const BatchSummary two = run(dir / "targets", dir / "two.h5", 2);
+  EXPECT_EQ(two.threads, 2);
+  EXPECT_EQ(two.failed, 4u);
+  test::expect_same_datasets(dir / "one.h5", dir / "two.h5");
+}
+
+TEST(BatchDriver, ResumeCompletesOnlyWhatIsMissing) {
+  const path dir = test::fresh_temp_dir("driver_resume");
+  test::copy_sample_targets(dir / "targets", {"woman", "man_bent"});
+  test::add_broken_targets(dir / "targets");
+  std::filesystem::remove(dir / "targets" / "truncated.obj");
+  std::filesystem::remove(dir / "targets" / "truncated.anchors.json");
+  run(dir / "targets", dir / "full.h5", 2);
+
+  // An interrupted run: one target committed as a part, no final assembly (as after SIGKILL).
+  {
+    const ArchiveProvenance provenance = current_provenance(batch_options_json({}));
+    BatchArchive archive = BatchArchive::create(dir / "resumed.h5", man().record, provenance);
+    const std::vector<TargetSpec> targets = discover_targets(dir / "targets");
+    for (const TargetSpec& t : targets)
+      if (t.name == "man_bent" || t.name == "torus") archive.commit(run_target(man(), t));
+  }
+  EXPECT_EQ(ArchiveReader(dir / "resumed.h5").targets().size(), 0u);  // opens: the initial assembly
+
+  const BatchSummary resumed = resume(dir / "targets", dir / "resumed.h5", false);
+  EXPECT_EQ(resumed.ran, 3u);  // woman, no_anchors, unknown_name
+  EXPECT_EQ(resumed.kept, 2u);
+  EXPECT_FALSE(outcome(resumed, "man_bent").ran);
+  EXPECT_TRUE(outcome(resumed, "man_bent").ok);
+  EXPECT_FALSE(outcome(resumed, "torus").ok);
+  EXPECT_TRUE(outcome(resumed, "woman").ran);
+  test::expect_same_datasets(dir / "full.h5", dir / "resumed.h5");
+
+  // Everything is committed now: only the failed ones rerun, and only when asked.
+  EXPECT_EQ(resume(dir / "targets", dir / "resumed.h5", false).ran, 0u);
+  const BatchSummary retried = resume(dir / "targets", dir / "resumed.h5", true);
+  EXPECT_EQ(retried.ran, 3u);
+  EXPECT_EQ(retried.failed, 3u);
+  test::expect_same_datasets(dir / "full.h5", dir / "resumed.h5");
+
+  // Other method options than the archive was started with: refused, nothing changes.
+  PairSettings other;
+  other.layout.greedy_diagonals = false;
+  EXPECT_THROW(resume(dir / "targets", dir / "resumed.h5", true, other), ArchiveError);
+}
+
+TEST(BatchDriver, ShardsMergeIntoTheDatasetsOfOneRun) {
+  const path dir = test::fresh_temp_dir("driver_shards");
+  test::copy_sample_targets(dir / "targets", {"woman_turned", "man_bent"});
+  test::add_broken_targets(dir / "targets");
+  run(dir / "targets", dir / "single.h5", 2);
+  std::vector<path> shards;
+  for (int i = 0; i < 3; ++i) {
+    shards.push_back(dir / ("shard_" + std::to_string(i) + ".h5"));
+    const BatchSummary summary = run(dir / "targets", shards.back(), 1, {i, 3});
+    EXPECT_EQ(summary.discovered, 6u);
+    EXPECT_EQ(summary.targets.size(), 2u);
+  }
+  merge_archives(shards, dir / "merged.h5");
+  test::expect_same_datasets(dir / "single.h5", dir / "merged.h5");
+}
+
+TEST(BatchDriver, DryRunChecksEveryTargetWithoutWriting) {
+  const path dir = test::fresh_temp_dir("driver_dry");
+  test::copy_sample_targets(dir / "targets", {"woman_turned"});
+  test::add_broken_targets(dir / "targets");
+  const BatchPlan plan = plan_batch(discover_targets(dir / "targets"), {}, {}, false);
+  const std::vector<TargetOutcome> checked = check_batch(man(), plan, 2);
+  ASSERT_EQ(checked.size(), 5u);
+  for (const TargetOutcome& o : checked) EXPECT_EQ(o.ok, o.name == "woman_turned") << o.name << ": " << o.error;
+}
+
+}  // namespace
+}  // namespace xparam

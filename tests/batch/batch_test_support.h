@@ -1,0 +1,159 @@
+#pragma once
+// Helpers shared by the batch tests: target folders (sample and broken), archive comparison,
+// running programs.
+
+#include "batch/template_preparation.h"
+#include "io/archive_reader.h"
+#include "support/test_data.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <bit>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace xparam::test {
+
+namespace fs = std::filesystem;
+
+inline fs::path sample_targets() { return data_path("sample_targets"); }
+
+// The template of the README's main command: the SMPL man with its landmarks and curves.
+inline TemplateInputs man_template() {
+  return {data_path("human_man.obj"), data_path("human_man.anchors.json"), data_path("human_man.curves.json")};
+}
+
+inline std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+inline void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+// Copy every file of the named sample targets (NAME.*) into `dir`.
+inline void copy_sample_targets(const fs::path& dir, const std::vector<std::string>& names) {
+  fs::create_directories(dir);
+  for (const auto& entry : fs::directory_iterator(sample_targets()))
+    for (const std::string& name : names)
+      if (entry.path().filename().string().rfind(name + ".", 0) == 0) fs::copy_file(entry.path(), dir / entry.path().filename());
+}
+
+// Anchors with the template's 29 names at vertices 0..28 of some mesh, one name optionally replaced.
+inline std::string anchors_json_at_first_vertices(const std::string& replaced = "", const std::string& by = "") {
+  const std::string text = read_file(data_path("human_man.anchors.json"));
+  std::vector<std::string> names;
+  for (std::size_t at = text.find("\"name\": \""); at != std::string::npos; at = text.find("\"name\": \"", at + 1)) {
+    const std::size_t start = at + 9;
+    names.push_back(text.substr(start, text.find('"', start) - start));
+  }
+  std::string json = "{\"anchors\": [";
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    json += (i ? ", " : "") + std::string("{\"name\": \"") + (names[i] == replaced ? by : names[i]) +
+            "\", \"vertex\": " + std::to_string(i) + "}";
+  }
+  return json + "]}";
+}
+
+// The broken targets of the "Done when" list, each failing for one reason before the mapping:
+//   truncated      the woman's OBJ cut in the middle of a line
+//   no_anchors     a mesh with no anchor file beside it
+//   torus          a genus-1 mesh (Bob) with the template's anchor names
+//   unknown_name   anchors with one name the template does not have
+inline void add_broken_targets(const fs::path& dir) {
+  fs::create_directories(dir);
+  const std::string woman = read_file(sample_targets() / "woman.obj");
+  write_file(dir / "truncated.obj", woman.substr(0, woman.size() / 2 + 7));
+  fs::copy_file(sample_targets() / "woman.anchors.json", dir / "truncated.anchors.json");
+  fs::copy_file(data_path("spot_low_resolution.obj"), dir / "no_anchors.obj");
+  fs::copy_file(data_path("bob_small.ply"), dir / "torus.ply");
+  write_file(dir / "torus.anchors.json", anchors_json_at_first_vertices());
+  fs::copy_file(data_path("spot_low_resolution.obj"), dir / "unknown_name.obj");
+  write_file(dir / "unknown_name.anchors.json", anchors_json_at_first_vertices("CROTCH", "NOT_A_LANDMARK"));
+}
+
+inline bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
+
+template <typename A, typename B>
+bool same_array(const A& a, const B& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
+  for (Eigen::Index i = 0; i < a.size(); ++i)
+    if (!same_bits(static_cast<double>(a.data()[i]), static_cast<double>(b.data()[i]))) return false;
+  return true;
+}
+
+// Every deterministic dataset of two archives is bit-identical (all but the timings).
+inline void expect_same_datasets(const fs::path& a_path, const fs::path& b_path) {
+  const ArchiveContents a = read_archive(a_path);
+  const ArchiveContents b = read_archive(b_path);
+  EXPECT_EQ(a.provenance.options_json, b.provenance.options_json);
+  EXPECT_TRUE(same_array(a.template_record.vertices, b.template_record.vertices));
+  EXPECT_TRUE(same_array(a.template_record.faces, b.template_record.faces));
+  ASSERT_EQ(a.targets.size(), b.targets.size()) << a_path << " vs " << b_path;
+  for (std::size_t t = 0; t < a.targets.size(); ++t) {
+    const TargetRecord& x = a.targets[t];
+    const TargetRecord& y = b.targets[t];
+    SCOPED_TRACE(x.name);
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.ok, y.ok);
+    EXPECT_EQ(x.error, y.error);
+    EXPECT_EQ(x.mesh_sha256, y.mesh_sha256);
+    EXPECT_EQ(x.anchors_sha256, y.anchors_sha256);
+    EXPECT_TRUE(same_array(x.remesh_vertices, y.remesh_vertices));
+    EXPECT_TRUE(same_array(x.corr_face, y.corr_face));
+    EXPECT_TRUE(same_array(x.corr_bary, y.corr_bary));
+    EXPECT_TRUE(same_array(x.face_patch, y.face_patch));
+    EXPECT_TRUE(same_array(x.face_l2_stretch, y.face_l2_stretch));
+    EXPECT_TRUE(same_array(x.face_angle_distortion, y.face_angle_distortion));
+    ASSERT_EQ(x.curves.size(), y.curves.size());
+    for (std::size_t c = 0; c < x.curves.size(); ++c) {
+      EXPECT_EQ(x.curves[c].face, y.curves[c].face);
+      EXPECT_TRUE(same_array(x.curves[c].bary, y.curves[c].bary));
+      EXPECT_TRUE(same_array(x.curves[c].xyz, y.curves[c].xyz));
+    }
+    EXPECT_TRUE(same_bits(x.metrics.e_l2, y.metrics.e_l2));
+    EXPECT_TRUE(same_bits(x.metrics.e_ang, y.metrics.e_ang));
+    EXPECT_TRUE(same_bits(x.metrics.gt_error, y.metrics.gt_error));
+    EXPECT_EQ(x.metrics.flipped_faces, y.metrics.flipped_faces);
+  }
+}
+
+// Debian's interpreter first: a user-installed python3 earlier in PATH may lack h5py.
+inline std::string python_with_h5py() {
+  for (const char* candidate : {"/usr/bin/python3", "python3"}) {
+    const std::string command = std::string(candidate) + " -c 'import h5py' > /dev/null 2>&1";
+    if (std::system(command.c_str()) == 0) return candidate;
+  }
+  return {};
+}
+
+// The independent reader of the archive tests (h5py + numpy).
+inline fs::path read_back_script() { return fs::path(XPARAM_SOURCE_DIR) / "tests" / "io" / "archive_read_back.py"; }
+
+// Single-quoted for the shell (built by appending: GCC 12 misreports "literal" + std::string&&
+// under -Wrestrict).
+inline std::string quoted(const fs::path& path) {
+  std::string text = "'";
+  text += path.string();
+  text += "'";
+  return text;
+}
+
+// Exit status of a shell command (-1 when it did not exit normally).
+inline int run_status(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace xparam::test

@@ -1,0 +1,147 @@
+// One target job: broken inputs become failed records naming the file and the reason; a
+// real pair fills every array, in the target file's corner order.
+#include "batch/target_job.h"
+
+#include "batch/target_discovery.h"
+#include "batch_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace xparam {
+namespace {
+
+using test::fs::path;
+
+const PreparedTemplate& man() {
+  static const PreparedTemplate prepared = prepare_template(test::man_template());
+  return prepared;
+}
+
+const TargetSpec& spec(const std::vector<TargetSpec>& targets, const std::string& name) {
+  for (const TargetSpec& t : targets)
+    if (t.name == name) return t;
+  throw std::runtime_error("no target " + name);
+}
+
+void expect_contains(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "\"" << part << "\" not in: " << text;
+}
+
+TEST(TargetJob, BrokenTargetsFailWithTheirReasonAndFile) {
+  const path dir = test::fresh_temp_dir("job_broken");
+  test::add_broken_targets(dir);
+  const std::vector<TargetSpec> targets = discover_targets(dir);
+  ASSERT_EQ(targets.size(), 4u);
+
+  struct Expectation {
+    const char* name;
+    const char* file;    // the file the error must name
+    const char* reason;  // and a word of why
+  };
+  for (const Expectation& e : {Expectation{"truncated", "truncated.obj", "truncated.obj"},
+                               Expectation{"no_anchors", "no_anchors.obj", "no anchors"},
+                               Expectation{"torus", "torus.ply", "genus mismatch"},
+                               Expectation{"unknown_name", "unknown_name.anchors.json", "NOT_A_LANDMARK"}}) {
+    SCOPED_TRACE(e.name);
+    const TargetSpec& target = spec(targets, e.name);
+    const TargetRecord record = run_target(man(), target);
+    EXPECT_FALSE(record.ok);
+    EXPECT_EQ(record.name, e.name);
+    expect_contains(record.error, e.file);
+    expect_contains(record.error, e.reason);
+    EXPECT_EQ(record.mesh_file, target.mesh.string());
+    EXPECT_EQ(record.remesh_vertices.rows(), 0);
+    EXPECT_TRUE(std::isfinite(record.seconds.back()));
+    // The dry-run check finds the same problem without mapping.
+    EXPECT_EQ(check_target(man(), target), record.error);
+  }
+  EXPECT_EQ(spec(targets, "torus").problem, "");
+  expect_contains(run_target(man(), spec(targets, "torus")).error, "genus 1");
+  expect_contains(run_target(man(), spec(targets, "unknown_name")).error, "CROTCH");
+}
+
+TEST(TargetJob, GroundTruthThatDoesNotFitIsAFailure) {
+  const path dir = test::fresh_temp_dir("job_bad_gt");
+  test::copy_sample_targets(dir, {"woman"});
+  test::write_file(dir / "woman.gt.txt", "0\n1\n2\n");
+  const TargetSpec target = discover_targets(dir).at(0);
+  expect_contains(check_target(man(), target), "3 ground-truth entries for 6890 template vertices");
+  test::write_file(dir / "woman.gt.txt", "0\n1\nseven\n");
+  expect_contains(check_target(man(), target), "woman.gt.txt:3:");
+  EXPECT_EQ(check_target(man(), discover_targets(test::sample_targets()).at(0)), "");
+}
+
+// The same surface with another triangulation and point anchors (.pp): the map must come
+// close to the identity that the ground truth states, and every array must be consistent.
+TEST(TargetJob, RetriangulatedManMapsNearTheIdentity) {
+  const TargetSpec target = spec(discover_targets(test::sample_targets()), "man_flipped");
+  const TargetRecord record = run_target(man(), target);
+  ASSERT_TRUE(record.ok) << record.error;
+  const auto n = man().record.vertices.rows();
+  const auto n_faces = man().record.faces.rows();
+  ASSERT_EQ(record.remesh_vertices.rows(), n);
+  ASSERT_EQ(record.corr_face.size(), n);
+  ASSERT_EQ(record.face_patch.size(), n_faces);
+  ASSERT_EQ(record.face_l2_stretch.size(), n_faces);
+  ASSERT_EQ(record.curves.size(), 2u);
+  EXPECT_EQ(record.face_patch.minCoeff(), 0);
+  EXPECT_LE(record.face_patch.maxCoeff(), 2 * 29 - 4 - 1);  // at most 2n - 4 patches for 29 anchors
+
+  // gt_error recomputed by hand from the remesh and the unchanged vertex positions.
+  double sum = 0.0;
+  for (Eigen::Index v = 0; v < n; ++v) sum += (record.remesh_vertices.row(v) - man().record.vertices.row(v)).norm();
+  EXPECT_DOUBLE_EQ(record.metrics.gt_error, sum / static_cast<double>(n));
+  // Bounds that a mix-up in the batch plumbing (wrong target, vertex order, corner order) breaks
+  // by far on a 1.8 m body, loose enough for the method's own error (measured 2026-11-23: mean
+  // 3.6 cm, 16 flipped faces, area ratio 0.949).
+  EXPECT_LT(record.metrics.gt_error, 0.1);
+  EXPECT_LT(record.metrics.flipped_faces, n_faces / 100);
+  EXPECT_NEAR(record.metrics.area_ratio, 1.0, 0.15);
+  EXPECT_GE(record.metrics.e_l2, 1.0);
+  // Anchors are fixed points of the map.
+  for (const int a : man().record.anchor_vertices)
+    EXPECT_LT((record.remesh_vertices.row(a) - man().record.vertices.row(a)).norm(), 1e-9) << a;
+}
+
+// A target file whose faces point inward is flipped at load: the archive's barycentrics must
+// still refer to the corners in the order the FILE lists them.
+TEST(TargetJob, CorrespondenceIsInTheTargetFilesCornerOrder) {
+  const path dir = test::fresh_temp_dir("job_inward_target");
+  std::istringstream in(test::read_file(test::sample_targets() / "man_bent.obj"));
+  std::ostringstream reversed;
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> faces;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string tag;
+    words >> tag;
+    if (tag == "v") {
+      Eigen::Vector3d v;
+      words >> v.x() >> v.y() >> v.z();
+      vertices.push_back(v);
+      reversed << line << "\n";
+    } else if (tag == "f") {
+      std::array<int, 3> f{};
+      words >> f[0] >> f[2] >> f[1];  // reversed
+      faces.push_back({f[0] - 1, f[1] - 1, f[2] - 1});
+      reversed << "f " << f[0] << " " << f[1] << " " << f[2] << "\n";
+    }
+  }
+  test::write_file(dir / "inward.obj", reversed.str());
+  std::filesystem::copy_file(test::sample_targets() / "man_bent.anchors.json", dir / "inward.anchors.json");
+  const TargetRecord record = run_target(man(), discover_targets(dir).at(0));
+  ASSERT_TRUE(record.ok) << record.error;
+  for (Eigen::Index v = 0; v < record.corr_face.size(); ++v) {
+    const auto& f = faces[static_cast<std::size_t>(record.corr_face[v])];
+    Eigen::Vector3d p = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) p += record.corr_bary(v, k) * vertices[static_cast<std::size_t>(f[k])];
+    ASSERT_LT((p - record.remesh_vertices.row(v).transpose()).norm(), 1e-9) << "template vertex " << v;
+  }
+}
+
+}  // namespace
+}  // namespace xparam

@@ -1,0 +1,220 @@
+// `xparam inspect`, `xparam export` and `xparam merge` run as a user runs them, on archives
+// written from synthetic records (the archive and the commands are what is under test; each
+// target's arrays differ, so a row mix-up shows).
+#include "io/archive_reader.h"
+#include "io/archive_writer.h"
+#include "io/mesh_reader.h"
+
+#include "support/test_data.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace xparam {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+CommandRun run_xparam(const std::string& arguments, const fs::path& dir) {
+  const fs::path err_file = dir / "stderr.txt";
+  const std::string command = test::xparam_binary().string() + " " + arguments + " 2> " + err_file.string();
+  CommandRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  char buffer[4096];
+  while (const std::size_t n = fread(buffer, 1, sizeof(buffer), pipe)) run.out.append(buffer, n);
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream err(err_file);
+  std::ostringstream text;
+  text << err.rdbuf();
+  run.err = text.str();
+  return run;
+}
+
+TemplateRecord make_template() {
+  TemplateRecord t;
+  t.mesh_file = "template.obj";
+  t.anchors_file = "template.anchors.json";
+  // An octahedron.
+  t.vertices.resize(6, 3);
+  t.vertices << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
+  t.faces.resize(8, 3);
+  t.faces << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
+  t.anchor_names = {"a", "b", "c"};
+  t.anchor_vertices = {0, 2, 4};
+  return t;
+}
+
+TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k) {
+  TargetRecord r;
+  r.name = name;
+  r.ok = true;
+  r.mesh_file = name + ".ply";
+  r.anchors_file = name + ".json";
+  // Positions with digits that only an exact writer keeps.
+  r.remesh_vertices = t.vertices * (1.0 + k / 3.0);
+  r.remesh_vertices.col(2).array() += 0.1 * k;
+  r.corr_face = Eigen::VectorXi::LinSpaced(6, k, k + 5);
+  r.corr_bary = Eigen::MatrixX3d::Constant(6, 3, 1.0 / 3.0);
+  r.face_patch = Eigen::VectorXi::LinSpaced(8, 0, 7).unaryExpr([k](int f) { return (f + k) % 4; });
+  r.face_l2_stretch = Eigen::VectorXd::Constant(8, 1.0 + k);
+  r.face_angle_distortion = Eigen::VectorXd::Constant(8, 0.5 * k);
+  r.metrics.e_l2 = 1.0 + k / 7.0;
+  r.metrics.e_ang = 0.25 * k;
+  r.metrics.flipped_faces = k;
+  r.metrics.gt_error = k == 2 ? std::numeric_limits<double>::quiet_NaN() : 0.01 * k;
+  r.seconds.fill(0.5 * k);
+  return r;
+}
+
+TargetRecord make_failed(const std::string& name) {
+  TargetRecord r;
+  r.name = name;
+  r.error = name + ".ply: genus 1, the template has genus 0";
+  r.mesh_file = name + ".ply";
+  return r;
+}
+
+std::vector<TargetRecord> make_targets(const TemplateRecord& t) {
+  return {make_target(t, "bob", 1), make_failed("carl"), make_target(t, "alice", 2), make_target(t, "dora", 3)};
+}
+
+ArchiveProvenance provenance() { return current_provenance(R"({"metric":"SDL"})"); }
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+TEST(InspectCommand, ListsEveryTargetWithStatusMetricsAndError) {
+  const fs::path dir = test::fresh_temp_dir("cli_inspect");
+  const TemplateRecord t = make_template();
+  write_archive(dir / "run.h5", t, provenance(), make_targets(t));
+
+  const CommandRun run = run_xparam("inspect " + (dir / "run.h5").string(), dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("6 vertices, 8 faces, 3 anchors, 0 curves"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("4 targets: 3 ok, 1 failed"), std::string::npos) << run.out;
+  // Rows in name order; bob has E_L2 = 1 + 1/7 printed with 6 significant digits.
+  const std::size_t alice = run.out.find("\nalice ");
+  const std::size_t bob = run.out.find("\nbob ");
+  const std::size_t carl = run.out.find("\ncarl ");
+  ASSERT_NE(alice, std::string::npos);
+  ASSERT_NE(bob, std::string::npos);
+  ASSERT_NE(carl, std::string::npos);
+  EXPECT_LT(alice, bob);
+  EXPECT_LT(bob, carl);
+  const std::string bob_line = run.out.substr(bob + 1, run.out.find('\n', bob + 1) - bob - 1);
+  EXPECT_NE(bob_line.find(" ok "), std::string::npos) << bob_line;
+  EXPECT_NE(bob_line.find("1.14286"), std::string::npos) << bob_line;
+  const std::string carl_line = run.out.substr(carl + 1, run.out.find('\n', carl + 1) - carl - 1);
+  EXPECT_NE(carl_line.find("failed"), std::string::npos) << carl_line;
+  EXPECT_NE(carl_line.find("carl.ply: genus 1, the template has genus 0"), std::string::npos) << carl_line;
+  fs::remove_all(dir);
+}
+
+TEST(InspectCommand, JsonCarriesTheExactValues) {
+  const fs::path dir = test::fresh_temp_dir("cli_inspect_json");
+  const TemplateRecord t = make_template();
+  const std::vector<TargetRecord> targets = make_targets(t);
+  write_archive(dir / "run.h5", t, provenance(), targets);
+
+  const CommandRun run = run_xparam("inspect --json " + (dir / "run.h5").string(), dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["options"]["metric"], "SDL");
+  EXPECT_EQ(j["ok"], 3);
+  EXPECT_EQ(j["failed"], 1);
+  ASSERT_EQ(j["targets"].size(), 4u);
+  EXPECT_EQ(j["targets"][0]["name"], "alice");
+  EXPECT_EQ(j["targets"][1]["metrics"]["E_L2"].get<double>(), 1.0 + 1 / 7.0);  // bob, bit-exact
+  EXPECT_TRUE(j["targets"][0]["metrics"]["gt_error"].is_null());               // alice has no ground truth
+  EXPECT_EQ(j["targets"][2]["status"], "failed");
+  EXPECT_EQ(j["targets"][2]["error"], "carl.ply: genus 1, the template has genus 0");
+  EXPECT_EQ(j["targets"][3]["seconds"]["total"].get<double>(), 1.5);
+  fs::remove_all(dir);
+}
+
+TEST(ExportCommand, ObjAndPlyReadBackAsTheRemesh) {
+  const fs::path dir = test::fresh_temp_dir("cli_export");
+  const TemplateRecord t = make_template();
+  const std::vector<TargetRecord> targets = make_targets(t);
+  write_archive(dir / "run.h5", t, provenance(), targets);
+  const TargetRecord& dora = targets[3];
+
+  for (const char* extension : {".obj", ".ply"}) {
+    SCOPED_TRACE(extension);
+    const fs::path out = dir / (std::string("dora") + extension);
+    const CommandRun run = run_xparam("export " + (dir / "run.h5").string() + " --target dora --out " + out.string(), dir);
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const TriangleSoup soup = read_triangle_soup(out);
+    ASSERT_EQ(soup.vertices.size(), 6u);
+    for (int v = 0; v < 6; ++v) EXPECT_EQ(soup.vertices[v], Eigen::Vector3d(dora.remesh_vertices.row(v))) << v;
+    ASSERT_EQ(soup.triangles.size(), 8u);
+    for (int f = 0; f < 8; ++f)
+      EXPECT_EQ(soup.triangles[f], (std::array<int, 3>{t.faces(f, 0), t.faces(f, 1), t.faces(f, 2)})) << f;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(ExportCommand, FailedOrUnknownTargetsAndFormatsAreErrors) {
+  const fs::path dir = test::fresh_temp_dir("cli_export_errors");
+  const TemplateRecord t = make_template();
+  write_archive(dir / "run.h5", t, provenance(), make_targets(t));
+  const std::string archive = (dir / "run.h5").string();
+
+  CommandRun run = run_xparam("export " + archive + " --target carl --out " + (dir / "carl.obj").string(), dir);
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("genus 1"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "carl.obj"));
+  run = run_xparam("export " + archive + " --target nobody --out " + (dir / "x.obj").string(), dir);
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("no target named 'nobody'"), std::string::npos) << run.err;
+  run = run_xparam("export " + archive + " --target bob --out " + (dir / "x.stl").string(), dir);
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("x.stl"), std::string::npos) << run.err;
+  fs::remove_all(dir);
+}
+
+TEST(MergeCommand, ShardsMergeIntoTheSingleRunArchive) {
+  const fs::path dir = test::fresh_temp_dir("cli_merge");
+  const TemplateRecord t = make_template();
+  const std::vector<TargetRecord> targets = make_targets(t);
+  write_archive(dir / "single.h5", t, provenance(), targets);
+  write_archive(dir / "s1.h5", t, provenance(), {targets[0], targets[3]});
+  write_archive(dir / "s2.h5", t, provenance(), {targets[1], targets[2]});
+
+  CommandRun run = run_xparam("merge " + (dir / "s1.h5").string() + " " + (dir / "s2.h5").string() + " --out " +
+                           (dir / "merged.h5").string(),
+                       dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("merged 4 targets from 2 shards"), std::string::npos) << run.out;
+  EXPECT_EQ(file_bytes(dir / "merged.h5"), file_bytes(dir / "single.h5"));
+  EXPECT_TRUE(fs::exists(dir / "merged.xdmf"));
+
+  run = run_xparam("merge " + (dir / "s1.h5").string() + " " + (dir / "single.h5").string() + " --out " +
+                       (dir / "overlap.h5").string(),
+                   dir);
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.err.find("is in both"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "overlap.h5"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace xparam

@@ -1,0 +1,92 @@
+// `xparam layout` end to end: the written files, layout.json's verdict and counts, and a clear
+// non-zero exit for a pair that cannot be laid out.
+#include "support/test_data.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace xparam {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Runs the program with `arguments`; returns its exit status, stderr into `errors`.
+int run_xparam(const std::string& arguments, const fs::path& dir, std::string& errors) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string command = test::xparam_binary().string() + " " + arguments + " > " +
+                              (dir / "stdout.txt").string() + " 2> " + err.string();
+  const int status = std::system(command.c_str());
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  errors = text.str();
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Eight SMPL vertices spread over the body, as a flat anchors JSON.
+fs::path write_anchors(const fs::path& dir) {
+  const fs::path path = dir / "anchors.json";
+  std::ofstream(path) << R"({"head": 412, "left wrist": 2241, "right wrist": 5559, "left heel": 3458,
+    "right heel": 6858, "belly": 3501, "back": 3022, "neck": 3050})";
+  return path;
+}
+
+std::string ply_header(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string header, line;
+  while (std::getline(in, line) && line != "end_header") header += line + "\n";
+  return header;
+}
+
+TEST(LayoutCommand, WritesBothRefinedMeshesAndTheSummary) {
+  const fs::path dir = test::fresh_temp_dir("layout_command");
+  const fs::path anchors = write_anchors(dir);
+  std::string errors;
+  const std::string arguments = "layout --source " + test::data_path("human_man.obj").string() +
+                                " --source-anchors " + anchors.string() + " --target " +
+                                test::data_path("human_woman.obj").string() + " --target-anchors " +
+                                anchors.string() + " --out " + (dir / "out").string() + " --check";
+  ASSERT_EQ(run_xparam(arguments, dir, errors), 0) << errors;
+  std::ifstream in(dir / "out" / "layout.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["anchors"], 8);
+  EXPECT_EQ(summary["edges"], 18);
+  EXPECT_EQ(summary["patches"], 12);
+  EXPECT_EQ(summary["consistent"], true);
+  EXPECT_TRUE(summary["violations"].empty());
+  EXPECT_GE(summary["refined_vertices"]["source"].get<int>(), 0);
+  EXPECT_GE(summary["refined_vertices"]["target"].get<int>(), 0);
+  for (const char* stage :
+       {"load", "anchors", "candidates", "tree", "diagonals", "patches", "check", "write"}) {
+    EXPECT_TRUE(summary["seconds"].contains(stage)) << stage;
+  }
+  for (const char* side : {"source", "target"}) {
+    const std::string header = ply_header(dir / "out" / (std::string(side) + ".ply"));
+    EXPECT_NE(header.find("property int anchor"), std::string::npos) << header;
+    EXPECT_NE(header.find("property int patch"), std::string::npos) << header;
+    EXPECT_NE(header.find("property uchar red"), std::string::npos) << header;
+    EXPECT_TRUE(fs::exists(dir / "out" / (std::string(side) + "_edges.obj")));
+  }
+}
+
+TEST(LayoutCommand, GenusMismatchExitsNonZeroWithAClearMessage) {
+  const fs::path dir = test::fresh_temp_dir("layout_command_genus");
+  const fs::path anchors = dir / "anchors.txt";
+  std::ofstream(anchors) << "a 0\nb 40\nc 80\nd 120\n";
+  std::string errors;
+  const std::string arguments = "layout --source " + test::data_path("spot_low_resolution.obj").string() +
+                                " --source-anchors " + anchors.string() + " --target " +
+                                test::data_path("bob_small.ply").string() + " --target-anchors " +
+                                anchors.string() + " --out " + (dir / "out").string();
+  EXPECT_NE(run_xparam(arguments, dir, errors), 0);
+  EXPECT_NE(errors.find("target mesh has genus 1"), std::string::npos) << errors;
+  EXPECT_FALSE(fs::exists(dir / "out" / "layout.json"));
+}
+
+}  // namespace
+}  // namespace xparam
