@@ -3,6 +3,7 @@
 #include "batch/file_order.h"
 #include "batch/ground_truth.h"
 #include "core/errors.h"
+#include "core/stopwatch.h"
 #include "core/orientation.h"
 #include "io/anchor_reader.h"
 #include "io/mesh_loader.h"
@@ -10,7 +11,6 @@
 
 #include <tbb/task_arena.h>
 
-#include <chrono>
 #include <cstddef>
 #include <optional>
 
@@ -19,19 +19,6 @@ namespace {
 
 // Column of a stage in StageSeconds (kTimingStages).
 enum Stage : std::size_t { kLoad, kAnchors, kLayout, kOptimize, kParameterize, kCompose, kOutputs, kTotal };
-
-class Stopwatch {
- public:
-  double lap() {
-    const auto now = std::chrono::steady_clock::now();
-    const double seconds = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    return seconds;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
 
 // The target's inputs, read and checked against the template.
 struct LoadedTarget {

@@ -103,7 +103,8 @@ void BM_QuadLpbd(benchmark::State& state) {
 BENCHMARK(BM_QuadLpbd);
 
 void BM_WachspressQuadMap(benchmark::State& state) {
-  const DomainMap map({{0.0, 0.0}, {2.0, 0.1}, {1.8, 1.5}, {0.1, 1.0}}, {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}});
+  const DomainMap map({{0.0, 0.0}, {2.0, 0.1}, {1.8, 1.5}, {0.1, 1.0}},
+                      {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}});
   const Eigen::Vector2d p(0.9, 0.6);
   for (auto _ : state) benchmark::DoNotOptimize(map(p).x());
 }

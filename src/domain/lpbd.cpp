@@ -184,7 +184,9 @@ Eigen::VectorXd cyclic_polygon_angles(const Eigen::VectorXd& lengths) {
   const Eigen::Index n = lengths.size();
   Eigen::Index longest = 0;
   lengths.maxCoeff(&longest);
-  auto central = [&](double radius, Eigen::Index i) { return 2.0 * std::asin(std::min(1.0, lengths[i] / (2.0 * radius))); };
+  auto central = [&](double radius, Eigen::Index i) {
+    return 2.0 * std::asin(std::min(1.0, lengths[i] / (2.0 * radius)));
+  };
   auto others = [&](double radius) {
     double sum = 0.0;
     for (Eigen::Index i = 0; i < n; ++i) sum += i == longest ? 0.0 : central(radius, i);
@@ -222,8 +224,8 @@ Eigen::VectorXd cyclic_polygon_angles(const Eigen::VectorXd& lengths) {
 
 double law_of_cosines_angle(double opposite, double adjacent_a, double adjacent_b) {
   XP_ASSERT_MSG(adjacent_a > 0.0 && adjacent_b > 0.0, adjacent_a << ", " << adjacent_b);
-  const double s =
-      (adjacent_a * adjacent_a + adjacent_b * adjacent_b - opposite * opposite) / (2.0 * adjacent_a * adjacent_b);
+  const double s = (adjacent_a * adjacent_a + adjacent_b * adjacent_b - opposite * opposite) /
+                   (2.0 * adjacent_a * adjacent_b);
   if (s < -1.0) return -s * kPi;
   if (s > 1.0) return (1.0 - s) * kPi;
   return std::acos(s);

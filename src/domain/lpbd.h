@@ -25,7 +25,7 @@ struct Lpbd {
   bool valid = false;                    ///< the sides close: every side shorter than the sum of the others
   bool convex = false;                   ///< every alpha_i in (0, pi): usable as a parameter domain
   int iterations = 0;                    ///< Newton iterations of eq. 2 (0 for a triangle)
-  double closure_error = 0.0;            ///< |sum_i l_i (cos phi_i, sin phi_i)|: how far the polygon is from closed
+  double closure_error = 0.0;  ///< |sum_i l_i (cos phi_i, sin phi_i)|: how far the polygon is from closed
 };
 
 /// Area the paper assigns to a degenerate base domain (section 4.2, after eq. 8).
@@ -51,7 +51,8 @@ Lpbd triangle_lpbd(double l0, double l1, double l2);
 /// Options of the n-gon solve of eq. 2.
 struct PolygonLpbdSettings {
   int max_iterations = 100;  ///< Newton iterations from theta; the fallback may use 20 times as many in all
-  double tolerance = 1e-14;  ///< KKT residual to reach (angles in rad, lengths / perimeter); never below rounding
+  double tolerance =
+      1e-14;  ///< KKT residual to reach (angles in rad, lengths / perimeter); never below rounding
 };
 
 /// The LPBD of an n-sided patch (paper eq. 2): the angles alpha closest in least squares to

@@ -2,8 +2,8 @@
 
 #include "core/errors.h"
 
-#include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +16,8 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Interior angles of triangle (x0, x1, x2), robust for small and obtuse angles.
-Eigen::Vector3d triangle_angles(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1, const Eigen::Vector3d& x2) {
+Eigen::Vector3d triangle_angles(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
+                                const Eigen::Vector3d& x2) {
   const Eigen::Vector3d* x[3] = {&x0, &x1, &x2};
   Eigen::Vector3d angles;
   for (int c = 0; c < 3; ++c) {
@@ -66,8 +67,10 @@ FaceMeasure measure_face(const std::array<Eigen::Vector3d, 3>& p, const std::arr
     t[k] = (q[k] - q[0]).dot(e_t);
   }
   const double twice_area = 2.0 * m.image_area;
-  const Eigen::Vector3d tau_s = ((t[1] - t[2]) * p[0] + (t[2] - t[0]) * p[1] + (t[0] - t[1]) * p[2]) / twice_area;
-  const Eigen::Vector3d tau_t = ((s[1] - s[2]) * p[0] + (s[2] - s[0]) * p[1] + (s[0] - s[1]) * p[2]) / twice_area;
+  const Eigen::Vector3d tau_s =
+      ((t[1] - t[2]) * p[0] + (t[2] - t[0]) * p[1] + (t[0] - t[1]) * p[2]) / twice_area;
+  const Eigen::Vector3d tau_t =
+      ((s[1] - s[2]) * p[0] + (s[2] - s[0]) * p[1] + (s[0] - s[1]) * p[2]) / twice_area;
   const double a = tau_s.dot(tau_s), b = tau_s.dot(tau_t), c = tau_t.dot(tau_t);
   m.l2 = std::sqrt(0.5 * (a + c));
 
@@ -113,7 +116,8 @@ DistortionSummary summarize(const std::vector<FaceMeasure>& measures, Use use) {
 
 DistortionResult measure_distortion(const std::vector<Eigen::Vector3d>& source_positions,
                                     const std::vector<Eigen::Vector3d>& image_positions,
-                                    const std::vector<std::array<int, 3>>& faces, const DistortionSettings& settings) {
+                                    const std::vector<std::array<int, 3>>& faces,
+                                    const DistortionSettings& settings) {
   if (source_positions.size() != image_positions.size()) {
     throw ParamError("distortion: " + std::to_string(source_positions.size()) + " source positions but " +
                      std::to_string(image_positions.size()) + " image positions");
@@ -123,8 +127,8 @@ DistortionResult measure_distortion(const std::vector<Eigen::Vector3d>& source_p
   for (std::size_t f = 0; f < faces.size(); ++f) {
     for (int v : faces[f]) {
       if (v < 0 || v >= n_vertices) {
-        throw ParamError("distortion: face " + std::to_string(f) + " has vertex " + std::to_string(v) + " of " +
-                         std::to_string(n_vertices));
+        throw ParamError("distortion: face " + std::to_string(f) + " has vertex " + std::to_string(v) +
+                         " of " + std::to_string(n_vertices));
       }
     }
   }
@@ -137,16 +141,17 @@ DistortionResult measure_distortion(const std::vector<Eigen::Vector3d>& source_p
   std::vector<FaceMeasure> measures(faces.size());
   tbb::parallel_for(std::size_t{0}, faces.size(), [&](std::size_t f) {
     const auto& face = faces[f];
-    measures[f] = measure_face({source_positions[face[0]], source_positions[face[1]], source_positions[face[2]]},
-                               {image_positions[face[0]], image_positions[face[1]], image_positions[face[2]]},
-                               settings);
+    measures[f] = measure_face(
+        {source_positions[face[0]], source_positions[face[1]], source_positions[face[2]]},
+        {image_positions[face[0]], image_positions[face[1]], image_positions[face[2]]}, settings);
   });
 
   DistortionResult result;
   result.settings = settings;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const FaceMeasure& m = measures[f];
-    if (m.degenerate_source) throw ParamError("distortion: source face " + std::to_string(f) + " is degenerate");
+    if (m.degenerate_source)
+      throw ParamError("distortion: source face " + std::to_string(f) + " is degenerate");
     result.face_l2_stretch.push_back(m.l2);
     result.face_angle_distortion.push_back(m.angle);
     result.face_max_stretch.push_back(m.max_stretch);

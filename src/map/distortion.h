@@ -26,20 +26,23 @@ struct DistortionSettings {
 
 /// Global values over a set of faces.
 struct DistortionSummary {
-  double e_l2 = 1.0;            ///< eq. 6: sqrt(sum A(Gamma f) * sum L2(f)^2 A(f)) / sum A(f); >= 1, 1 for isometry or similarity
-  double e_ang = 0.0;           ///< eq. 3 over all faces: mean of ((a - a') / a)^2 over every angle of every face
+  double e_l2 =
+      1.0;  ///< eq. 6: sqrt(sum A(Gamma f) * sum L2(f)^2 A(f)) / sum A(f); >= 1, 1 for isometry or similarity
+  double e_ang = 0.0;  ///< eq. 3 over all faces: mean of ((a - a') / a)^2 over every angle of every face
   double stretch_max_sv = 1.0;  ///< mean over faces of max(sigma1, 1 / sigma2) of the map f -> Gamma(f)
 };
 
 /// Per-face and global distortion of a map.
 struct DistortionResult {
-  std::vector<double> face_l2_stretch;       ///< #F eq. 5 L2(f); +inf for a degenerate image
-  std::vector<double> face_angle_distortion; ///< #F (1/3) sum_j ((a_j - a'_j) / a_j)^2; +inf for a degenerate image
-  std::vector<double> face_max_stretch;      ///< #F max(sigma1, 1 / sigma2) of f -> Gamma(f); +inf for a degenerate image
-  DistortionSummary all;                     ///< over every face: +inf as soon as one image is degenerate
-  DistortionSummary nondegenerate;           ///< over the faces whose image is not degenerate
-  int degenerate_faces = 0;                  ///< faces whose image is degenerate (infinite stretch)
-  DistortionSettings settings;               ///< the settings used
+  std::vector<double> face_l2_stretch;  ///< #F eq. 5 L2(f); +inf for a degenerate image
+  std::vector<double>
+      face_angle_distortion;  ///< #F (1/3) sum_j ((a_j - a'_j) / a_j)^2; +inf for a degenerate image
+  std::vector<double>
+      face_max_stretch;   ///< #F max(sigma1, 1 / sigma2) of f -> Gamma(f); +inf for a degenerate image
+  DistortionSummary all;  ///< over every face: +inf as soon as one image is degenerate
+  DistortionSummary nondegenerate;  ///< over the faces whose image is not degenerate
+  int degenerate_faces = 0;         ///< faces whose image is degenerate (infinite stretch)
+  DistortionSettings settings;      ///< the settings used
 };
 
 /// Measure the distortion of the map source_positions -> image_positions on `faces`.

@@ -1,29 +1,16 @@
 #include "map/pair_mapping.h"
 
 #include "core/errors.h"
+#include "core/stopwatch.h"
 #include "core/provenance.h"
 #include "map/cross_map.h"
 
 #include <tbb/parallel_for.h>
 
-#include <chrono>
 #include <map>
 
 namespace xparam {
 namespace {
-
-class Stopwatch {
- public:
-  double lap() {
-    const auto now = std::chrono::steady_clock::now();
-    const double seconds = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    return seconds;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
 
 std::vector<VertexHandle> anchor_vertices(const PlacedAnchors& placed) {
   std::vector<VertexHandle> vertices;

@@ -108,11 +108,12 @@ RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>
     const auto& t = faces[f];
     for (int v : t) {
       if (v < 0 || v >= n_vertices) {
-        throw ParamError("remesh quality: face " + std::to_string(f) + " has vertex " + std::to_string(v) + " of " +
-                         std::to_string(n_vertices));
+        throw ParamError("remesh quality: face " + std::to_string(f) + " has vertex " + std::to_string(v) +
+                         " of " + std::to_string(n_vertices));
       }
     }
-    const Eigen::Vector3d normal = (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
+    const Eigen::Vector3d normal =
+        (positions[t[1]] - positions[t[0]]).cross(positions[t[2]] - positions[t[0]]);
     const double twice_area = normal.norm();
     result.remesh_area += 0.5 * twice_area;
     if (twice_area == 0.0) {

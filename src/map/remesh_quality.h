@@ -15,11 +15,12 @@ namespace xparam {
 
 /// Flip test and area comparison of a remesh against the target surface.
 struct RemeshQualityResult {
-  std::vector<int> flipped_faces;  ///< remesh faces whose normal has a negative dot with the reference normal, ascending
-  int degenerate_faces = 0;        ///< remesh faces of zero area (neither flipped nor not)
-  double remesh_area = 0.0;        ///< total area of the remesh, target units^2
-  double target_area = 0.0;        ///< total area of the target mesh
-  double area_ratio = 0.0;         ///< remesh_area / target_area (1 when the remesh covers the target once)
+  std::vector<int>
+      flipped_faces;  ///< remesh faces whose normal has a negative dot with the reference normal, ascending
+  int degenerate_faces = 0;  ///< remesh faces of zero area (neither flipped nor not)
+  double remesh_area = 0.0;  ///< total area of the remesh, target units^2
+  double target_area = 0.0;  ///< total area of the target mesh
+  double area_ratio = 0.0;   ///< remesh_area / target_area (1 when the remesh covers the target once)
 };
 
 /// Compare a remesh with the target surface it lies on.

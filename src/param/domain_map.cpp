@@ -10,7 +10,8 @@
 
 namespace xparam {
 
-Eigen::VectorXd wachspress_coordinates(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
+Eigen::VectorXd wachspress_coordinates(const std::vector<Eigen::Vector2d>& polygon,
+                                       const Eigen::Vector2d& p) {
   const int k = static_cast<int>(polygon.size());
   XP_ASSERT_MSG(k >= 3, "polygon with " << k << " corners");
   // Areas relative to the polygon's size keep the (k-2)-fold products away from under/overflow.
@@ -40,7 +41,8 @@ DomainMap::DomainMap(std::vector<Eigen::Vector2d> from, std::vector<Eigen::Vecto
             << " (need the same number, at least 3)";
     throw ParamError(message.str());
   }
-  if (!is_strictly_convex(from_)) throw ParamError("domain map: source domain is not strictly convex and CCW");
+  if (!is_strictly_convex(from_))
+    throw ParamError("domain map: source domain is not strictly convex and CCW");
   if (!is_strictly_convex(to_)) throw ParamError("domain map: target domain is not strictly convex and CCW");
   if (is_affine()) {
     Eigen::Matrix2d source, target;

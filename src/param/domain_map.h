@@ -43,7 +43,7 @@ class DomainMap {
   std::vector<Eigen::Vector2d> from_;
   std::vector<Eigen::Vector2d> to_;
   Eigen::Matrix2d linear_ = Eigen::Matrix2d::Identity();  ///< affine part (triangles only)
-  Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();       ///< translation (triangles only)
+  Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();      ///< translation (triangles only)
 };
 
 }  // namespace xparam

@@ -3,10 +3,10 @@
 #include "core/errors.h"
 #include "param/convex_polygon.h"
 
+#include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
-#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <exception>
@@ -37,7 +37,8 @@ void check_disk(const DiskPatch& patch) {
       }
       used[t[c]] = 1;
     }
-    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) fail(patch, "triangle " + std::to_string(f) + " repeats a vertex");
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+      fail(patch, "triangle " + std::to_string(f) + " repeats a vertex");
     for (int c = 0; c < 3; ++c) {
       if (++directed[{t[c], t[(c + 1) % 3]}] > 1) {
         fail(patch, "edge (" + std::to_string(t[c]) + ", " + std::to_string(t[(c + 1) % 3]) +
@@ -66,7 +67,8 @@ void check_disk(const DiskPatch& patch) {
   for (int i = 0; i < m; ++i) {
     const int a = loop[i];
     const int b = loop[(i + 1) % m];
-    if (a < 0 || a >= n_vertices || on_loop[a]) fail(patch, "boundary loop entry " + std::to_string(i) + " is invalid or repeated");
+    if (a < 0 || a >= n_vertices || on_loop[a])
+      fail(patch, "boundary loop entry " + std::to_string(i) + " is invalid or repeated");
     on_loop[a] = 1;
     if (!directed.count({a, b}) || directed.count({b, a})) {
       fail(patch, "boundary loop step (" + std::to_string(a) + ", " + std::to_string(b) +
@@ -85,12 +87,14 @@ void check_corners(const DiskPatch& patch) {
   }
   for (int j = 0; j < k; ++j) {
     const int p = patch.corner_positions[j];
-    if (p < 0 || p >= static_cast<int>(patch.boundary_loop.size()) || (j > 0 && p <= patch.corner_positions[j - 1])) {
+    if (p < 0 || p >= static_cast<int>(patch.boundary_loop.size()) ||
+        (j > 0 && p <= patch.corner_positions[j - 1])) {
       fail(patch, "corner position " + std::to_string(j) + " (" + std::to_string(p) +
                       ") is out of the loop or not increasing");
     }
   }
-  if (!is_strictly_convex(patch.polygon)) fail(patch, "target polygon is not strictly convex and counter-clockwise");
+  if (!is_strictly_convex(patch.polygon))
+    fail(patch, "target polygon is not strictly convex and counter-clockwise");
 }
 
 // Boundary vertices at the fraction of 3-D arc length along their polygon side.
@@ -155,7 +159,8 @@ PatchParameterizationResult parameterize_patch(const DiskPatch& patch) {
         fail(patch, "triangle " + std::to_string(f) + " is degenerate at vertex " + std::to_string(i));
       }
       // Floater's weight of edge (i, j) gathers tan(angle/2) / |x_j - x_i| from both triangles beside it.
-      for (const auto& [neighbour, length] : {std::pair{t[(c + 1) % 3], to_j.norm()}, std::pair{t[(c + 2) % 3], to_k.norm()}}) {
+      for (const auto& [neighbour, length] :
+           {std::pair{t[(c + 1) % 3], to_j.norm()}, std::pair{t[(c + 2) % 3], to_k.norm()}}) {
         const double w = tangent / length;
         entries.emplace_back(unknown[i], unknown[i], w);
         if (unknown[neighbour] >= 0) {
@@ -171,7 +176,8 @@ PatchParameterizationResult parameterize_patch(const DiskPatch& patch) {
 
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> solver;
   solver.compute(matrix);
-  if (solver.info() != Eigen::Success) fail(patch, "sparse LU factorization failed: " + solver.lastErrorMessage());
+  if (solver.info() != Eigen::Success)
+    fail(patch, "sparse LU factorization failed: " + solver.lastErrorMessage());
   const Eigen::MatrixX2d solution = solver.solve(rhs);
   if (solver.info() != Eigen::Success || !solution.allFinite()) fail(patch, "sparse solve failed");
   for (int v = 0; v < n_vertices; ++v) {

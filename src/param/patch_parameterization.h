@@ -33,7 +33,7 @@ struct DiskPatch {
 /// The parameterization of one patch.
 struct PatchParameterizationResult {
   std::vector<Eigen::Vector2d> uv;  ///< #V position of every local vertex in the polygon
-  int interior_vertices = 0;       ///< size of the sparse system solved
+  int interior_vertices = 0;        ///< size of the sparse system solved
 };
 
 /// Parameterize one patch. Boundary vertices are placed on the side between consecutive

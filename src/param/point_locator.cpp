@@ -23,8 +23,8 @@ std::pair<double, double> nearest_on_segment(const Eigen::Vector2d& p, const Eig
 
 }  // namespace
 
-PointLocation nearest_point_in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                                        const Eigen::Vector2d& c) {
+PointLocation nearest_point_in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                        const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   PointLocation result;
   const double area2 = signed_area2(a, b, c);
   if (area2 != 0.0) {
@@ -58,10 +58,11 @@ PointLocator::PointLocator(std::vector<Eigen::Vector2d> uv, std::vector<std::arr
   for (std::size_t f = 0; f < triangles_.size(); ++f) {
     for (int v : triangles_[f]) {
       if (v < 0 || v >= n_vertices) {
-        throw ParamError("point locator: triangle " + std::to_string(f) + " has vertex " + std::to_string(v) + " of " +
-                         std::to_string(n_vertices));
+        throw ParamError("point locator: triangle " + std::to_string(f) + " has vertex " + std::to_string(v) +
+                         " of " + std::to_string(n_vertices));
       }
-      if (!uv_[v].allFinite()) throw ParamError("point locator: vertex " + std::to_string(v) + " is not finite");
+      if (!uv_[v].allFinite())
+        throw ParamError("point locator: vertex " + std::to_string(v) + " is not finite");
     }
   }
   if (!(settings.cells_per_triangle > 0.0)) throw ParamError("point locator: cells_per_triangle must be > 0");
@@ -75,13 +76,16 @@ PointLocator::PointLocator(std::vector<Eigen::Vector2d> uv, std::vector<std::arr
     }
   }
   const Eigen::Vector2d extent = high - low;
-  const double target_cells = std::max(1.0, settings.cells_per_triangle * static_cast<double>(triangles_.size()));
+  const double target_cells =
+      std::max(1.0, settings.cells_per_triangle * static_cast<double>(triangles_.size()));
   // Square cells, about target_cells of them over the bounding box (also when it is flat).
   cell_size_ = std::max({std::sqrt(extent.x() * extent.y() / target_cells), extent.maxCoeff() / target_cells,
                          std::numeric_limits<double>::min()});
   origin_ = low;
-  nx_ = std::clamp(static_cast<int>(std::ceil(extent.x() / cell_size_)), 1, static_cast<int>(target_cells) + 1);
-  ny_ = std::clamp(static_cast<int>(std::ceil(extent.y() / cell_size_)), 1, static_cast<int>(target_cells) + 1);
+  nx_ =
+      std::clamp(static_cast<int>(std::ceil(extent.x() / cell_size_)), 1, static_cast<int>(target_cells) + 1);
+  ny_ =
+      std::clamp(static_cast<int>(std::ceil(extent.y() / cell_size_)), 1, static_cast<int>(target_cells) + 1);
 
   // Counting pass, then a filling pass in triangle order: every cell's list is ascending.
   auto cell_range = [this](const std::array<int, 3>& t) {

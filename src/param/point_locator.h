@@ -17,9 +17,10 @@ struct PointLocatorSettings {
 
 /// Where a query point lies.
 struct PointLocation {
-  int triangle = -1;                          ///< nearest triangle (the containing one when distance = 0)
-  Eigen::Vector3d bary = Eigen::Vector3d::Zero();  ///< barycentrics of the nearest point of that triangle, clamped: >= 0, sum 1
-  double distance = 0.0;                      ///< distance from the query to that triangle (uv units); 0 inside
+  int triangle = -1;  ///< nearest triangle (the containing one when distance = 0)
+  Eigen::Vector3d bary =
+      Eigen::Vector3d::Zero();  ///< barycentrics of the nearest point of that triangle, clamped: >= 0, sum 1
+  double distance = 0.0;        ///< distance from the query to that triangle (uv units); 0 inside
 };
 
 /// A uniform-grid index over a 2-D triangulation answering "which triangle holds p".
@@ -58,7 +59,7 @@ class PointLocator {
 
 /// The point of triangle (a, b, c) nearest to p, as clamped barycentrics, and its distance.
 /// A degenerate (zero-area) triangle is treated as its three sides.
-PointLocation nearest_point_in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                                        const Eigen::Vector2d& c);
+PointLocation nearest_point_in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                        const Eigen::Vector2d& b, const Eigen::Vector2d& c);
 
 }  // namespace xparam

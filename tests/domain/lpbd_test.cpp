@@ -23,7 +23,8 @@ void expect_corner(const Eigen::Vector2d& actual, double x, double y, double tol
 void expect_sides_preserved(const Lpbd& lpbd, double tolerance) {
   const std::size_t n = lpbd.corners.size();
   for (std::size_t i = 0; i < n; ++i) {
-    EXPECT_NEAR((lpbd.corners[(i + 1) % n] - lpbd.corners[i]).norm(), lpbd.lengths[i], tolerance) << "side " << i;
+    EXPECT_NEAR((lpbd.corners[(i + 1) % n] - lpbd.corners[i]).norm(), lpbd.lengths[i], tolerance)
+        << "side " << i;
   }
 }
 
@@ -145,7 +146,8 @@ TEST(PolygonLpbd, RegularPentagonFromAConeLikePatch) {
 }
 
 TEST(PolygonLpbd, TriangleAgreesWithTheLawOfCosinesWhateverTheta) {
-  for (const std::vector<double>& theta : {std::vector<double>{1.0, 1.0, 1.0}, {0.2, 2.5, 0.9}, {2.0, 2.0, 2.0}}) {
+  for (const std::vector<double>& theta :
+       {std::vector<double>{1.0, 1.0, 1.0}, {0.2, 2.5, 0.9}, {2.0, 2.0, 2.0}}) {
     const Lpbd from_solver = polygon_lpbd({3.0, 4.0, 5.0}, theta);
     const Lpbd exact = triangle_lpbd(3.0, 4.0, 5.0);
     ASSERT_TRUE(from_solver.valid);
@@ -219,7 +221,8 @@ TEST(PolygonLpbd, SurfaceAnglesInconsistentWithTheLengthsStillGiveClosedPolygons
     for (double a : lpbd.angles) sum += a;
     ASSERT_NEAR(sum, (n - 2) * kPi, 1e-12);
     expect_sides_preserved(lpbd, 1e-12 * perimeter);
-    EXPECT_EQ(lpbd.convex, std::all_of(lpbd.angles.begin(), lpbd.angles.end(), [](double a) { return a > 0 && a < kPi; }));
+    EXPECT_EQ(lpbd.convex,
+              std::all_of(lpbd.angles.begin(), lpbd.angles.end(), [](double a) { return a > 0 && a < kPi; }));
   }
   EXPECT_GT(closable, 2500);
   // Measured with this generator: 3 misses (8-gons whose solution path folds) in 18087 trials,

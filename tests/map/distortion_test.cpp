@@ -4,9 +4,9 @@
 #include "core/mesh.h"
 #include "support/test_data.h"
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <OpenMesh/Core/IO/MeshIO.hh>
 
 #include <Eigen/Geometry>
 
@@ -25,7 +25,8 @@ struct Soup {
 
 Soup read_soup(const std::string& file) {
   Mesh mesh;
-  if (!OpenMesh::IO::read_mesh(mesh, test::data_path(file).string())) throw std::runtime_error("cannot read " + file);
+  if (!OpenMesh::IO::read_mesh(mesh, test::data_path(file).string()))
+    throw std::runtime_error("cannot read " + file);
   Soup soup;
   for (VertexHandle v : mesh.vertices()) soup.positions.push_back(position(mesh, v));
   for (FaceHandle f : mesh.faces()) {
@@ -39,7 +40,8 @@ Soup read_soup(const std::string& file) {
 
 // A rigid motion, so the image is not trivially the same coordinates.
 std::vector<Eigen::Vector3d> moved(const std::vector<Eigen::Vector3d>& positions, double scale) {
-  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(1.1, Eigen::Vector3d(0.3, -1.0, 0.4).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(1.1, Eigen::Vector3d(0.3, -1.0, 0.4).normalized()).toRotationMatrix();
   std::vector<Eigen::Vector3d> result;
   for (const auto& p : positions) result.push_back(scale * (rotation * p) + Eigen::Vector3d(5.0, -2.0, 1.0));
   return result;
@@ -83,7 +85,8 @@ TEST(Distortion, StretchByTwoAlongOneAxisHandComputed) {
   EXPECT_NEAR(r.all.stretch_max_sv, 2.0, 1e-15);
   // Angles (pi/2, pi/4, pi/4) become (pi/2, atan(1/2), atan 2).
   const double q = kPi / 4;
-  const double expected = (std::pow((q - std::atan(0.5)) / q, 2) + std::pow((q - std::atan(2.0)) / q, 2)) / 3.0;
+  const double expected =
+      (std::pow((q - std::atan(0.5)) / q, 2) + std::pow((q - std::atan(2.0)) / q, 2)) / 3.0;
   EXPECT_NEAR(r.face_angle_distortion[0], expected, 1e-15);
   EXPECT_NEAR(r.all.e_ang, expected, 1e-15);
 }
@@ -150,9 +153,11 @@ TEST(Distortion, RealMapIsAtLeastOneAndThreadCountIndependent) {
   // the singular values): an independent check of the per-face formula on every face.
   for (std::size_t f = 0; f < man.faces.size(); ++f) {
     const auto& t = man.faces[f];
-    const double a = (man.positions[t[1]] - man.positions[t[0]]).cross(man.positions[t[2]] - man.positions[t[0]]).norm();
-    const double b =
-        (woman.positions[t[1]] - woman.positions[t[0]]).cross(woman.positions[t[2]] - woman.positions[t[0]]).norm();
+    const double a =
+        (man.positions[t[1]] - man.positions[t[0]]).cross(man.positions[t[2]] - man.positions[t[0]]).norm();
+    const double b = (woman.positions[t[1]] - woman.positions[t[0]])
+                         .cross(woman.positions[t[2]] - woman.positions[t[0]])
+                         .norm();
     ASSERT_GE(one.face_l2_stretch[f], std::sqrt(a / b) * (1 - 1e-12)) << "face " << f;
     ASSERT_GE(one.face_max_stretch[f], 1.0 - 1e-12);
   }

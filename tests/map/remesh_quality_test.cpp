@@ -3,8 +3,8 @@
 #include "core/errors.h"
 #include "support/test_data.h"
 
-#include <OpenMesh/Core/IO/MeshIO.hh>
 #include <gtest/gtest.h>
+#include <OpenMesh/Core/IO/MeshIO.hh>
 
 #include <algorithm>
 #include <map>
@@ -68,7 +68,8 @@ Remesh identity_remesh(const Mesh& mesh) {
 TEST(RemeshQuality, OctahedronOnItselfHasNoFlipAndFullArea) {
   const Mesh target = octahedron();
   const Remesh remesh = identity_remesh(target);
-  const RemeshQualityResult r = measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
+  const RemeshQualityResult r =
+      measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
   EXPECT_TRUE(r.flipped_faces.empty());
   EXPECT_EQ(r.degenerate_faces, 0);
   // Eight equilateral faces of side sqrt 2: area 8 * sqrt(3)/4 * 2 = 4 sqrt 3.
@@ -87,7 +88,8 @@ TEST(RemeshQuality, ReflectedOctahedronIsFlippedEverywhere) {
     remesh.locations[v] = at_vertex(target, mirror[v]);
     EXPECT_NEAR((position(target, remesh.locations[v]) - remesh.positions[v]).norm(), 0.0, 1e-15);
   }
-  const RemeshQualityResult r = measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
+  const RemeshQualityResult r =
+      measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
   EXPECT_EQ(r.flipped_faces, (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7}));
   EXPECT_NEAR(r.area_ratio, 1.0, 1e-15);
 }
@@ -107,8 +109,10 @@ TEST(RemeshQuality, EdgeLocationsGiveTheSameAnswerWhicheverFaceTheyName) {
       SurfacePoint point;
       point.face = f.idx();
       int corner = 0;
-      for (VertexHandle w : target.fv_range(f)) point.bary[corner++] = (w.idx() == a || w.idx() == b) ? 0.5 : 0.0;
-      remesh.positions.push_back(0.5 * (position(target, target.vertex_handle(a)) + position(target, target.vertex_handle(b))));
+      for (VertexHandle w : target.fv_range(f))
+        point.bary[corner++] = (w.idx() == a || w.idx() == b) ? 0.5 : 0.0;
+      remesh.positions.push_back(
+          0.5 * (position(target, target.vertex_handle(a)) + position(target, target.vertex_handle(b))));
       remesh.locations.push_back(point);
       return midpoint[key] = static_cast<int>(remesh.positions.size()) - 1;
     };
@@ -127,7 +131,8 @@ TEST(RemeshQuality, EdgeLocationsGiveTheSameAnswerWhicheverFaceTheyName) {
     EXPECT_TRUE(r.flipped_faces.empty()) << "pick " << pick;
     EXPECT_NEAR(r.area_ratio, 1.0, 1e-14);
     for (auto& t : split) std::swap(t[1], t[2]);
-    EXPECT_EQ(measure_remesh_quality(split, remesh.positions, remesh.locations, target).flipped_faces.size(), 32u);
+    EXPECT_EQ(measure_remesh_quality(split, remesh.positions, remesh.locations, target).flipped_faces.size(),
+              32u);
   }
 }
 
@@ -140,14 +145,16 @@ TEST(RemeshQuality, ExactlyTheReversedFacesOfARealMeshAreFlipped) {
     std::swap(remesh.faces[f][1], remesh.faces[f][2]);
     reversed.push_back(f);
   }
-  const RemeshQualityResult r = measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
+  const RemeshQualityResult r =
+      measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
   EXPECT_EQ(r.flipped_faces, reversed);
   EXPECT_NEAR(r.area_ratio, 1.0, 1e-12);
 
   // Half of the faces cover about half of the surface; a collapsed face counts as degenerate.
   remesh.faces.resize(remesh.faces.size() / 2);
   remesh.positions[remesh.faces[0][1]] = remesh.positions[remesh.faces[0][0]];
-  const RemeshQualityResult half = measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
+  const RemeshQualityResult half =
+      measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
   EXPECT_GE(half.degenerate_faces, 1);
   EXPECT_GT(half.area_ratio, 0.2);
   EXPECT_LT(half.area_ratio, 0.8);

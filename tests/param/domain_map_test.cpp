@@ -28,7 +28,8 @@ std::vector<Eigen::Vector2d> random_convex_polygon(std::mt19937& rng, int k) {
     for (double ti : t) {
       const Eigen::Vector2d e(rx * std::cos(ti), ry * std::sin(ti));
       polygon.push_back(Eigen::Vector2d(std::cos(turn) * e.x() - std::sin(turn) * e.y(),
-                                        std::sin(turn) * e.x() + std::cos(turn) * e.y()) + shift);
+                                        std::sin(turn) * e.x() + std::cos(turn) * e.y()) +
+                        shift);
     }
     // Keep polygons that are clearly convex (no corner flatter than ~3 degrees) and have no
     // tiny side (a grid squeezed against a tiny side is too coarse to show the smooth map).
@@ -38,8 +39,9 @@ std::vector<Eigen::Vector2d> random_convex_polygon(std::mt19937& rng, int k) {
     for (int i = 0; i < k && clear; ++i) {
       const Eigen::Vector2d a = polygon[(i + 1) % k] - polygon[i];
       const Eigen::Vector2d b = polygon[(i + 2) % k] - polygon[(i + 1) % k];
-      clear = signed_area2(polygon[i], polygon[(i + 1) % k], polygon[(i + 2) % k]) > 0.05 * a.norm() * b.norm() &&
-              a.norm() > 0.2 * perimeter / k;
+      clear =
+          signed_area2(polygon[i], polygon[(i + 1) % k], polygon[(i + 2) % k]) > 0.05 * a.norm() * b.norm() &&
+          a.norm() > 0.2 * perimeter / k;
     }
     if (clear) return polygon;
   }
@@ -86,7 +88,8 @@ TEST(Wachspress, PartitionOfUnityLinearPrecisionAndBoundaryBehaviour) {
       const Eigen::VectorXd at_corner = wachspress_coordinates(polygon, polygon[c]);
       for (int i = 0; i < k; ++i) EXPECT_EQ(at_corner[i], i == c ? 1.0 : 0.0);
       const double s = unit(rng);
-      const Eigen::VectorXd on_side = wachspress_coordinates(polygon, (1 - s) * polygon[c] + s * polygon[(c + 1) % k]);
+      const Eigen::VectorXd on_side =
+          wachspress_coordinates(polygon, (1 - s) * polygon[c] + s * polygon[(c + 1) % k]);
       for (int i = 0; i < k; ++i) {
         const double expected = i == c ? 1 - s : (i == (c + 1) % k ? s : 0.0);
         EXPECT_NEAR(on_side[i], expected, 1e-12);
@@ -110,7 +113,8 @@ TEST(DomainMap, AffineForTrianglesIsExact) {
   const DomainMap map(from, to);
   EXPECT_TRUE(map.is_affine());
   // Hand-computed: (x, y) -> (1 - 3y, 1 + x).
-  for (const Eigen::Vector2d& p : {Eigen::Vector2d(0.5, 0.25), Eigen::Vector2d(1.0, 0.5), Eigen::Vector2d(0.1, 0.8)}) {
+  for (const Eigen::Vector2d& p :
+       {Eigen::Vector2d(0.5, 0.25), Eigen::Vector2d(1.0, 0.5), Eigen::Vector2d(0.1, 0.8)}) {
     const Eigen::Vector2d q = map(p);
     EXPECT_NEAR(q.x(), 1.0 - 3.0 * p.y(), 1e-15);
     EXPECT_NEAR(q.y(), 1.0 + p.x(), 1e-15);
@@ -141,7 +145,8 @@ TEST(DomainMap, SamePolygonGivesTheIdentity) {
   const DomainMap map(quad, quad);
   for (int trial = 0; trial < 50; ++trial) {
     const double a = unit(rng), b = unit(rng);
-    const Eigen::Vector2d p = (1 - a) * (1 - b) * quad[0] + a * (1 - b) * quad[1] + a * b * quad[2] + (1 - a) * b * quad[3];
+    const Eigen::Vector2d p =
+        (1 - a) * (1 - b) * quad[0] + a * (1 - b) * quad[1] + a * b * quad[2] + (1 - a) * b * quad[3];
     EXPECT_NEAR((map(p) - p).norm(), 0.0, 1e-13);
   }
 }
@@ -189,11 +194,13 @@ TEST(DomainMap, JacobianIsPositiveEverywhereEvenForExtremeQuads) {
       for (int b = 1; b < n; ++b) {
         for (int a = 1; a < n; ++a) {
           const double s = static_cast<double>(a) / n, t = static_cast<double>(b) / n;
-          const Eigen::Vector2d p = (1 - s) * (1 - t) * q[0] + s * (1 - t) * q[1] + s * t * q[2] + (1 - s) * t * q[3];
+          const Eigen::Vector2d p =
+              (1 - s) * (1 - t) * q[0] + s * (1 - t) * q[1] + s * t * q[2] + (1 - s) * t * q[3];
           const double h = 1e-7;
           const Eigen::Vector2d dx = map(p + Eigen::Vector2d(h, 0)) - map(p - Eigen::Vector2d(h, 0));
           const Eigen::Vector2d dy = map(p + Eigen::Vector2d(0, h)) - map(p - Eigen::Vector2d(0, h));
-          ASSERT_GT(dx.x() * dy.y() - dx.y() * dy.x(), 0.0) << "quad " << i << " -> " << j << " at " << s << ", " << t;
+          ASSERT_GT(dx.x() * dy.y() - dx.y() * dy.x(), 0.0)
+              << "quad " << i << " -> " << j << " at " << s << ", " << t;
         }
       }
     }

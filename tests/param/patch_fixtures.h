@@ -118,7 +118,9 @@ inline DiskPatch hemisphere_patch(int rings, int segments) {
                                    std::cos(polar));
     }
   }
-  auto ring = [segments](int r, int s) { return 1 + (r - 1) * segments + (s % segments + segments) % segments; };
+  auto ring = [segments](int r, int s) {
+    return 1 + (r - 1) * segments + (s % segments + segments) % segments;
+  };
   for (int s = 0; s < segments; ++s) patch.triangles.push_back({0, ring(1, s), ring(1, s + 1)});
   for (int r = 1; r < rings; ++r) {
     for (int s = 0; s < segments; ++s) {

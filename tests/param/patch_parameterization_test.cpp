@@ -38,7 +38,8 @@ void expect_bijective_onto_polygon(const DiskPatch& patch, const PatchParameteri
     EXPECT_EQ(result.uv[patch.boundary_loop[patch.corner_positions[j]]], patch.polygon[j]);
     const int end = j + 1 < k ? patch.corner_positions[j + 1] : patch.corner_positions[0] + m;
     for (int i = patch.corner_positions[j]; i <= end; ++i) {
-      EXPECT_LT(segment_distance(result.uv[patch.boundary_loop[i % m]], patch.polygon[j], patch.polygon[(j + 1) % k]),
+      EXPECT_LT(segment_distance(result.uv[patch.boundary_loop[i % m]], patch.polygon[j],
+                                 patch.polygon[(j + 1) % k]),
                 1e-14);
     }
   }
@@ -46,14 +47,16 @@ void expect_bijective_onto_polygon(const DiskPatch& patch, const PatchParameteri
   double total = 0.0;
   for (double a : areas) total += a;
   double polygon_area2 = 0.0;
-  for (int j = 0; j < k; ++j) polygon_area2 += signed_area2(Eigen::Vector2d::Zero(), patch.polygon[j], patch.polygon[(j + 1) % k]);
+  for (int j = 0; j < k; ++j)
+    polygon_area2 += signed_area2(Eigen::Vector2d::Zero(), patch.polygon[j], patch.polygon[(j + 1) % k]);
   EXPECT_NEAR(total, polygon_area2, 1e-12 * polygon_area2);
 }
 
 TEST(PatchParameterization, PlanarPatchOntoItsOwnShapeIsTheIdentity) {
   // Mean-value weights reproduce affine functions on a planar mesh, and arc length along a
   // straight side reproduces the side's vertices, so the map must be the rigid motion back.
-  const Eigen::Matrix2d shapes[2] = {Eigen::Matrix2d::Identity(), (Eigen::Matrix2d() << 2.0, 0.7, 0.1, 1.3).finished()};
+  const Eigen::Matrix2d shapes[2] = {Eigen::Matrix2d::Identity(),
+                                     (Eigen::Matrix2d() << 2.0, 0.7, 0.1, 1.3).finished()};
   for (int s = 0; s < 2; ++s) {
     DiskPatch patch = test::planar_grid_patch(12, shapes[s], 7 + s);
     std::vector<Eigen::Vector2d> plane;
@@ -61,7 +64,8 @@ TEST(PatchParameterization, PlanarPatchOntoItsOwnShapeIsTheIdentity) {
     const std::vector<double> input_areas = uv_signed_areas(patch, plane);
     ASSERT_GT(*std::min_element(input_areas.begin(), input_areas.end()), 0.0);
     // Move the patch into a general position in space: the map only sees intrinsic geometry.
-    const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
+    const Eigen::Matrix3d rotation =
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
     for (auto& p : patch.positions) p = rotation * p + Eigen::Vector3d(3.0, -1.0, 2.0);
     const PatchParameterizationResult result = parameterize_patch(patch);
     EXPECT_EQ(result.interior_vertices, 11 * 11);

@@ -15,8 +15,8 @@ namespace xparam {
 namespace {
 
 // The reference answer: every triangle in order, nearest wins, lowest index on ties.
-PointLocation brute_force(const std::vector<Eigen::Vector2d>& uv, const std::vector<std::array<int, 3>>& triangles,
-                          const Eigen::Vector2d& p) {
+PointLocation brute_force(const std::vector<Eigen::Vector2d>& uv,
+                          const std::vector<std::array<int, 3>>& triangles, const Eigen::Vector2d& p) {
   PointLocation best;
   best.distance = std::numeric_limits<double>::infinity();
   for (int f = 0; f < static_cast<int>(triangles.size()); ++f) {
@@ -30,7 +30,8 @@ PointLocation brute_force(const std::vector<Eigen::Vector2d>& uv, const std::vec
   return best;
 }
 
-Eigen::Vector2d point_of(const std::vector<Eigen::Vector2d>& uv, const std::array<int, 3>& t, const Eigen::Vector3d& bary) {
+Eigen::Vector2d point_of(const std::vector<Eigen::Vector2d>& uv, const std::array<int, 3>& t,
+                         const Eigen::Vector3d& bary) {
   return bary[0] * uv[t[0]] + bary[1] * uv[t[1]] + bary[2] * uv[t[2]];
 }
 
@@ -107,7 +108,8 @@ TEST(PointLocator, FindsVerticesEdgesAndBoundaryPointsOffByRounding) {
       // Vertices and edge points: found at (rounding) distance 0 and reproduced by the barycentrics.
       for (int c = 0; c < 3; ++c) {
         const double s = unit(rng);
-        for (const Eigen::Vector2d& p : {uv[t[c]], Eigen::Vector2d((1 - s) * uv[t[c]] + s * uv[t[(c + 1) % 3]])}) {
+        for (const Eigen::Vector2d& p :
+             {uv[t[c]], Eigen::Vector2d((1 - s) * uv[t[c]] + s * uv[t[(c + 1) % 3]])}) {
           const PointLocation found = locator.locate(p);
           EXPECT_LE(found.distance, 1e-15);
           EXPECT_NEAR((point_of(uv, triangles[found.triangle], found.bary) - p).norm(), 0.0, 1e-14);
@@ -127,7 +129,8 @@ TEST(PointLocator, FindsVerticesEdgesAndBoundaryPointsOffByRounding) {
         const int a = t[c], b = t[(c + 1) % 3];
         if (count[{std::min(a, b), std::max(a, b)}] != 1) continue;
         const Eigen::Vector2d edge = uv[b] - uv[a];
-        const Eigen::Vector2d outward = Eigen::Vector2d(edge.y(), -edge.x()).normalized();  // right of a CCW edge
+        const Eigen::Vector2d outward =
+            Eigen::Vector2d(edge.y(), -edge.x()).normalized();  // right of a CCW edge
         const Eigen::Vector2d p = 0.5 * (uv[a] + uv[b]) + 1e-12 * outward;
         const PointLocation found = locator.locate(p);
         EXPECT_EQ(found.triangle, f);
