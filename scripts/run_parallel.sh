@@ -45,7 +45,7 @@ rm -f "$joblog"
 set +e
 parallel -q --will-cite --jobs "$jobs" --halt never --joblog "$joblog" --tag --line-buffer \
   "$xparam" batch "$@" --resume --shard "{}/$shards" --out "$shard_dir/shard_{}.h5" \
-  ::: $(seq 0 $((shards - 1)))
+  ::: $(seq 0 $((shards - 1))) < /dev/null  # never wait on the caller's stdin
 set -e
 
 status=0
