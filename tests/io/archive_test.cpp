@@ -138,8 +138,10 @@ ArchiveProvenance test_provenance() { return current_provenance(R"({"metric":"SD
 // Bitwise equality, so NaN == NaN and -0.0 != 0.0.
 template <typename A, typename B>
 bool same_bits(const A& a, const B& b) {
+  // An empty matrix may have a null data pointer, which memcmp must not see.
   return a.rows() == b.rows() && a.cols() == b.cols() &&
-         std::memcmp(a.data(), b.data(), sizeof(typename A::Scalar) * static_cast<std::size_t>(a.size())) == 0;
+         (a.size() == 0 ||
+          std::memcmp(a.data(), b.data(), sizeof(typename A::Scalar) * static_cast<std::size_t>(a.size())) == 0);
 }
 
 bool same_double(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
