@@ -10,7 +10,7 @@ mkdir -p "$out"
 
 data="$root/tests/data"
 set +e
-"$xparam" batch --template "$data/human_man.obj" --template-anchors "$data/human_man.anchors.json" \
+"$xparam" batch --template "$data/human_man.obj" --template-anchors "$data/human.anchors.json" \
   --curves "$data/human_man.curves.json" --targets "$data/sample_targets" --out "$out/sample.h5" \
   --summary "$out/sample.summary.json" -j "$(nproc)"
 status=$?

@@ -154,8 +154,9 @@ def anchors(path):
 
 
 def write_anchors_json(path, named, what):
-    document = {"description": f"{what}; SMPL anthropometric landmarks from github.com/DavidBoja/SMPL-Anthropometry "
-                               "(MIT License, (c) 2023 David Bojanic), see tests/data/ATTRIBUTION.md",
+    document = {"description": f"{what}; the 41 SMPL landmarks of tests/data/human.anchors.json (29 from "
+                               "github.com/DavidBoja/SMPL-Anthropometry, MIT License, (c) 2023 David Bojanic; "
+                               "12 extremities made for xparam), see tests/data/ATTRIBUTION.md",
                 "anchors": [{"name": n, "vertex": v} for n, v in named]}
     path.write_text(json.dumps(document, indent=2) + "\n")
 
@@ -165,8 +166,9 @@ def quoted(name):
 
 
 def write_anchors_text(path, named):
-    lines = ["# SMPL anthropometric landmarks (github.com/DavidBoja/SMPL-Anthropometry, MIT License,",
-             "# (c) 2023 David Bojanic) as 0-based vertex indices of woman_turned.obj", "# name index"]
+    lines = ["# the 41 SMPL landmarks of tests/data/human.anchors.json (29 from github.com/DavidBoja/SMPL-Anthropometry,",
+             "# MIT License, (c) 2023 David Bojanic; 12 extremities made for xparam) as 0-based vertex indices",
+             "# of woman_turned.obj", "# name index"]
     lines += [f"{quoted(n)} {v}" for n, v in named]
     path.write_text("\n".join(lines) + "\n")
 
@@ -191,8 +193,8 @@ def main():
     OUT.mkdir(exist_ok=True)
     man_v, man_f = read_obj(DATA / "human_man.obj")
     woman_v, woman_f = read_obj(DATA / "human_woman.obj")
-    man_anchors = anchors(DATA / "human_man.anchors.json")
-    woman_anchors = anchors(DATA / "human_woman.anchors.json")
+    man_anchors = anchors(DATA / "human.anchors.json")
+    woman_anchors = anchors(DATA / "human.anchors.json")
 
     shutil.copyfile(DATA / "human_woman.obj", OUT / "woman.obj")
     write_anchors_json(OUT / "woman.anchors.json", woman_anchors, "anchors of woman.obj")

@@ -6,7 +6,7 @@
 #   scripts/run_parallel.sh SHARDS ARCHIVE.h5 XPARAM_BATCH_OPTIONS...
 # e.g.
 #   scripts/run_parallel.sh 4 out/all.h5 --template tests/data/human_man.obj \
-#       --template-anchors tests/data/human_man.anchors.json --targets tests/data/sample_targets -j 1
+#       --template-anchors tests/data/human.anchors.json --targets tests/data/sample_targets -j 1
 #
 # Shard i writes ARCHIVE.h5.shards/shard_i.h5 (with --resume, so running the script again after
 # an interruption only completes what is missing). Do not pass --out or --shard yourself.

@@ -31,8 +31,9 @@ std::string number(double value) {
 
 std::string count(int value) { return value < 0 ? "-" : std::to_string(value); }
 
+// A column `width` wide, and never without a space after it.
 std::string padded(std::string text, std::size_t width) {
-  if (text.size() < width) text.append(width - text.size(), ' ');
+  text.append(text.size() < width ? width - text.size() : 1, ' ');
   return text;
 }
 

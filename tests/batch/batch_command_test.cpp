@@ -24,7 +24,7 @@ using test::quoted;
 
 std::string template_options() {
   return " --template " + quoted(test::data_path("human_man.obj")) + " --template-anchors " +
-         quoted(test::data_path("human_man.anchors.json")) + " --curves " +
+         quoted(test::data_path("human.anchors.json")) + " --curves " +
          quoted(test::data_path("human_man.curves.json"));
 }
 
@@ -105,7 +105,7 @@ TEST(BatchCommand, ConfigFileGivesOptionsAndTheCommandLineWins) {
   test::copy_sample_targets(dir / "targets", {"woman"});
   test::write_file(dir / "run.toml", "# xparam batch options\ntemplate = \"" + test::data_path("human_man.obj").string() +
                                          "\"\ntemplate-anchors = \"" +
-                                         test::data_path("human_man.anchors.json").string() + "\"\ntargets = \"" +
+                                         test::data_path("human.anchors.json").string() + "\"\ntargets = \"" +
                                          (dir / "targets").string() + "\"\nthreads = 1\nout = \"" +
                                          (dir / "from_config.h5").string() + "\"\n");
   ASSERT_EQ(batch(dir, " -j 2 --config " + quoted(dir / "run.toml") + " --out " + quoted(dir / "out.h5") +
@@ -141,7 +141,7 @@ TEST(BatchCommand, UsageAndFatalErrorsHaveTheirExitCodes) {
 
   // A genus-1 template is fatal, whatever the targets.
   EXPECT_EQ(batch(dir, " --template " + quoted(test::data_path("bob_small.ply")) + " --template-anchors " +
-                           quoted(test::data_path("human_man.anchors.json")) + targets + " --out " +
+                           quoted(test::data_path("human.anchors.json")) + targets + " --out " +
                            quoted(dir / "a.h5")),
             3);
   EXPECT_NE(test::read_file(dir / "stderr.txt").find("template"), std::string::npos);
@@ -184,7 +184,7 @@ TEST(BatchCommand, KilledRunResumesToTheDatasetsOfAnUninterruptedRun) {
 
   const path archive = dir / "killed.h5";
   const pid_t child = spawn_batch({"--template", test::data_path("human_man.obj").string(), "--template-anchors",
-                                   test::data_path("human_man.anchors.json").string(), "--curves",
+                                   test::data_path("human.anchors.json").string(), "--curves",
                                    test::data_path("human_man.curves.json").string(), "--targets",
                                    (dir / "targets").string(), "-j", "1", "--checkpoint-seconds", "0", "--out",
                                    archive.string()},
@@ -232,7 +232,7 @@ TEST(BatchCommand, ParallelAndSlurmScriptsMergeIntoOneRunsDatasets) {
   EXPECT_EQ(compare_with_h5py(dir / "single.h5", dir / "parallel.h5"), 0);
 
   const std::string slurm_env = env + "XPARAM_TEMPLATE=" + quoted(test::data_path("human_man.obj")) +
-                                " XPARAM_TEMPLATE_ANCHORS=" + quoted(test::data_path("human_man.anchors.json")) +
+                                " XPARAM_TEMPLATE_ANCHORS=" + quoted(test::data_path("human.anchors.json")) +
                                 " XPARAM_CURVES=" + quoted(test::data_path("human_man.curves.json")) +
                                 " XPARAM_TARGETS=" + quoted(dir / "targets") + " XPARAM_OUT=" +
                                 quoted(dir / "slurm.h5") + " XPARAM_SHARDS=2 SLURM_CPUS_PER_TASK=1 ";

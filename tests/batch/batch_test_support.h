@@ -27,7 +27,7 @@ inline fs::path sample_targets() { return data_path("sample_targets"); }
 
 // The template of the README's main command: the SMPL man with its landmarks and curves.
 inline TemplateInputs man_template() {
-  return {data_path("human_man.obj"), data_path("human_man.anchors.json"), data_path("human_man.curves.json")};
+  return {data_path("human_man.obj"), data_path("human.anchors.json"), data_path("human_man.curves.json")};
 }
 
 inline std::string read_file(const fs::path& path) {
@@ -50,9 +50,9 @@ inline void copy_sample_targets(const fs::path& dir, const std::vector<std::stri
       if (entry.path().filename().string().rfind(name + ".", 0) == 0) fs::copy_file(entry.path(), dir / entry.path().filename());
 }
 
-// Anchors with the template's 29 names at vertices 0..28 of some mesh, one name optionally replaced.
+// Anchors with the template's 41 names at vertices 0..40 of some mesh, one name optionally replaced.
 inline std::string anchors_json_at_first_vertices(const std::string& replaced = "", const std::string& by = "") {
-  const std::string text = read_file(data_path("human_man.anchors.json"));
+  const std::string text = read_file(data_path("human.anchors.json"));
   std::vector<std::string> names;
   for (std::size_t at = text.find("\"name\": \""); at != std::string::npos; at = text.find("\"name\": \"", at + 1)) {
     const std::size_t start = at + 9;

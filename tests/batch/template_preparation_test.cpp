@@ -68,7 +68,7 @@ TEST(TemplatePreparation, RecordMirrorsTheFiles) {
   EXPECT_EQ(record.mesh_sha256, sha256_file_hex(inputs.mesh));
   EXPECT_EQ(record.anchors_sha256, sha256_file_hex(inputs.anchors));
   EXPECT_EQ(record.curves_sha256, sha256_file_hex(inputs.curves));
-  ASSERT_EQ(record.anchor_names.size(), 29u);
+  ASSERT_EQ(record.anchor_names.size(), 41u);
   EXPECT_EQ(record.anchor_names.front(), "HEAD_TOP");
   EXPECT_EQ(record.anchor_vertices.front(), 412);
 
@@ -82,8 +82,9 @@ TEST(TemplatePreparation, RecordMirrorsTheFiles) {
 }
 
 TEST(TemplatePreparation, PositionAnchorsAreRecordedAtTheirVertex) {
-  // The .pp file holds the same 29 landmarks as positions copied from the vertices.
+  // The .pp file holds the 29 landmarks of human_man.anchors.json as positions copied from the vertices.
   TemplateInputs inputs = test::man_template();
+  inputs.anchors = test::data_path("human_man.anchors.json");
   const std::vector<int> by_index = prepare_template(inputs).record.anchor_vertices;
   inputs.anchors = test::data_path("anchors/human_man.pp");
   const TemplateRecord record = prepare_template(inputs).record;

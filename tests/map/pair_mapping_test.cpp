@@ -54,25 +54,14 @@ TEST(PairMapping, RigidlyMovedScaledCopyHasNoStretch) {
   EXPECT_NEAR(map.quality.area_ratio, 1.0, 1e-6);
 }
 
-// The 29 anthropometric anchors leave fingers and toes as protrusions inside patches, which
-// mean-value maps squeeze very differently on the two bodies; an anchor at every fingertip and
-// at the big toes (SMPL vertex ids picked as geodesic extremities from the wrists and heels)
-// is what a body database uses.
-AnchorSet with_extremities(AnchorSet anchors) {
-  const std::pair<const char*, int> extremities[] = {
-      {"LEFT_MIDDLE_FINGERTIP", 2444}, {"LEFT_RING_FINGERTIP", 2555},   {"LEFT_INDEX_FINGERTIP", 2334},
-      {"LEFT_LITTLE_FINGERTIP", 2672}, {"LEFT_THUMB_TIP", 2746},        {"RIGHT_MIDDLE_FINGERTIP", 5906},
-      {"RIGHT_INDEX_FINGERTIP", 5781}, {"RIGHT_RING_FINGERTIP", 6017},  {"RIGHT_LITTLE_FINGERTIP", 6135},
-      {"RIGHT_THUMB_TIP", 6226},       {"LEFT_BIG_TOE", 3216},          {"RIGHT_BIG_TOE", 6616}};
-  for (const auto& [name, vertex] : extremities) anchors.anchors.push_back({name, AnchorVertex{vertex}, "", 0});
-  return anchors;
-}
-
+// The 41 landmarks of human.anchors.json: the 29 anthropometric ones leave fingers and toes as
+// protrusions inside patches, which mean-value maps squeeze very differently on the two bodies;
+// the 12 extremities (fingertips, big toes) are what a body database uses.
 TEST(PairMapping, ManOntoWomanIsBijectiveAndCoversTheTarget) {
   const HumanMan& man = human_man();
   const LoadedMesh woman = load_mesh(test::data_path("human_woman.obj"));
-  const AnchorSet man_anchors = with_extremities(man.anchors);
-  const AnchorSet woman_anchors = with_extremities(read_anchors(test::data_path("human_woman.anchors.json")));
+  const AnchorSet man_anchors = read_anchors(test::data_path("human.anchors.json"));
+  const AnchorSet woman_anchors = read_anchors(test::data_path("human.anchors.json"));
   const std::vector<FeatureCurve> curves =
       validate_curves(read_curves(test::data_path("human_man.curves.json")), man.mesh.mesh);
   const PairMapping map = map_pair(man.mesh.mesh, man_anchors, woman.mesh, woman_anchors, curves);

@@ -32,4 +32,16 @@
  <point x="-0.171862" y="1.503111" z="-0.022700" active="1" name="Rt. Acromion"/>
  <point x="-0.437883" y="1.479378" z="-0.050443" active="1" name="Rt. Humeral Lateral Epicn"/>
  <point x="-0.723654" y="1.447345" z="-0.076897" active="1" name="Rt. Ulnar Styloid"/>
+ <point x="0.918230" y="1.437017" z="-0.061287" active="1" name="LEFT_MIDDLE_FINGERTIP"/>
+ <point x="0.899958" y="1.435162" z="-0.090773" active="1" name="LEFT_RING_FINGERTIP"/>
+ <point x="0.907483" y="1.432707" z="-0.022406" active="1" name="LEFT_INDEX_FINGERTIP"/>
+ <point x="0.861484" y="1.428964" z="-0.123613" active="1" name="LEFT_LITTLE_FINGERTIP"/>
+ <point x="0.827915" y="1.426480" z="0.046164" active="1" name="LEFT_THUMB_TIP"/>
+ <point x="-0.917859" y="1.440692" z="-0.060349" active="1" name="RIGHT_MIDDLE_FINGERTIP"/>
+ <point x="-0.907828" y="1.435214" z="-0.022050" active="1" name="RIGHT_INDEX_FINGERTIP"/>
+ <point x="-0.900222" y="1.438426" z="-0.092577" active="1" name="RIGHT_RING_FINGERTIP"/>
+ <point x="-0.860573" y="1.431163" z="-0.123905" active="1" name="RIGHT_LITTLE_FINGERTIP"/>
+ <point x="-0.826082" y="1.419337" z="0.043537" active="1" name="RIGHT_THUMB_TIP"/>
+ <point x="0.069434" y="0.017641" z="0.177607" active="1" name="LEFT_BIG_TOE"/>
+ <point x="-0.077568" y="0.013885" z="0.177842" active="1" name="RIGHT_BIG_TOE"/>
 </PickedPoints>
