@@ -31,7 +31,7 @@ std::string number(double value) {
 
 std::string count(int value) { return value < 0 ? "-" : std::to_string(value); }
 
-// A column `width` wide, and never without a space after it.
+// A column `width` wide (separator included), and never without a space after it.
 std::string padded(std::string text, std::size_t width) {
   text.append(text.size() < width ? width - text.size() : 1, ' ');
   return text;
@@ -99,12 +99,12 @@ void run_inspect(const InspectOptions& options) {
             << reader.targets().size() << " targets: " << ok << " ok, " << failed << " failed\n";
   if (reader.targets().empty()) return;
   std::size_t width = 4;
-  for (const ArchiveTargetSummary& target : reader.targets()) width = std::max(width, target.name.size());
-  std::cout << padded("name", width) << "  status  " << padded("E_L2", 10) << padded("E_ang", 10)
+  for (const ArchiveTargetSummary& target : reader.targets()) width = std::max(width, target.name.size() + 2);
+  std::cout << padded("name", width) << "status  " << padded("E_L2", 10) << padded("E_ang", 10)
             << padded("flipped", 8) << padded("gt_error", 10) << padded("seconds", 9) << "error\n";
   for (const ArchiveTargetSummary& target : reader.targets()) {
     const TargetMetrics& m = target.metrics;
-    std::cout << padded(target.name, width) << "  " << padded(target.ok ? "ok" : "failed", 8)
+    std::cout << padded(target.name, width) << padded(target.ok ? "ok" : "failed", 8)
               << padded(number(m.e_l2), 10) << padded(number(m.e_ang), 10) << padded(count(m.flipped_faces), 8)
               << padded(number(m.gt_error), 10) << padded(number(target.seconds.back()), 9) << target.error << "\n";
   }

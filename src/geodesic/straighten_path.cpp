@@ -35,12 +35,9 @@ struct Crossing {
   bool known = false;
 };
 
-// A point of the straightened curve: a mesh vertex, or a point inside a mesh edge.
-struct CurvePoint {
-  VertexHandle vertex;  // valid: the curve passes through this vertex
-  EdgeHandle edge;      // otherwise: the edge it crosses here
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  int strip_face = -1;  // strip index of the face holding the segment that ends here
+// A curve point plus the strip index of the face holding the segment that ends there.
+struct StripPoint : CurvePoint {
+  int strip_face = -1;
 };
 
 // Swap of the strip around one vertex: strip faces first + 1 .. last - 1 (the interior of the
@@ -53,20 +50,20 @@ struct Reroute {
 
 class Straightener {
  public:
-  Straightener(Mesh& mesh, std::vector<bool>& region_mask, const std::vector<VertexHandle>& path,
+  Straightener(const Mesh& mesh, const std::vector<bool>& region_mask, const std::vector<VertexHandle>& path,
                const StraightenSettings& settings)
       : mesh_(mesh), region_mask_(region_mask), path_(path), settings_(settings) {}
 
-  StraightenResult run() {
+  StraightenedCurve run() {
     check_input();
-    result_.settings = settings_;
-    result_.input_length = chain_length(mesh_, path_);
+    curve_.settings = settings_;
+    curve_.input_length = chain_length(mesh_, path_);
     if (path_.size() == 2) {
       // A single edge is straight: there is no interior vertex to bend at.
-      result_.chain = path_;
-      result_.converged = true;
-      result_.length = result_.input_length;
-      return result_;
+      for (VertexHandle v : path_) curve_.points.push_back({v, EdgeHandle(), position(mesh_, v)});
+      curve_.converged = true;
+      curve_.length = curve_.input_length;
+      return curve_;
     }
     std::vector<FaceHandle> strip = initial_strip();
     for (;;) {
@@ -76,23 +73,26 @@ class Straightener {
       const FunnelApex end{static_cast<int>(unfolded.portals.size()), b(),
                            unfolded.point(static_cast<int>(strip.size()) - 1, b())};
       const std::vector<FunnelApex> apexes = funnel_path(unfolded.portals, start, end);
-      ++result_.rounds;
+      ++curve_.rounds;
       const std::vector<Reroute> reroutes = plan_reroutes(strip, unfolded, apexes);
-      if (reroutes.empty() || result_.rounds >= settings_.max_rounds) {
-        result_.converged = reroutes.empty();
-        const std::vector<CurvePoint> points = curve_points(strip, unfolded, apexes);
+      if (reroutes.empty() || curve_.rounds >= settings_.max_rounds) {
+        curve_.converged = reroutes.empty();
+        const std::vector<StripPoint> points = curve_points(strip, unfolded, apexes);
         check_faces_crossed_once(strip, points);
-        insert(points);
+        for (const StripPoint& point : points) curve_.points.push_back(point);
         break;
       }
       apply(reroutes, strip);
-      result_.reroutes += static_cast<int>(reroutes.size());
+      curve_.reroutes += static_cast<int>(reroutes.size());
     }
-    result_.length = chain_length(mesh_, result_.chain);
-    for (std::size_t k = 1; k + 1 < result_.chain.size(); ++k) {
-      if (!inside_region(result_.chain[k])) ++result_.boundary_contacts;
+    for (std::size_t k = 1; k < curve_.points.size(); ++k) {
+      curve_.length += (curve_.points[k].point - curve_.points[k - 1].point).norm();
     }
-    return result_;
+    for (std::size_t k = 1; k + 1 < curve_.points.size(); ++k) {
+      const VertexHandle v = curve_.points[k].vertex;
+      if (v.is_valid() && !inside_region(v)) curve_.contacts.push_back(v);
+    }
+    return curve_;
   }
 
  private:
@@ -111,7 +111,6 @@ class Straightener {
   }
 
   void check_input() const {
-    if (!has_provenance(mesh_)) fail("the mesh has no provenance (init_provenance was not called)");
     if (region_mask_.size() != mesh_.n_faces()) {
       fail("region mask has " + std::to_string(region_mask_.size()) + " entries for " +
            std::to_string(mesh_.n_faces()) + " faces");
@@ -289,7 +288,7 @@ class Straightener {
           for (int k = first; k <= last; ++k) {
             crossings[ids[k]].vertex = v;
             const double t = crossings[ids[k]].t;
-            if (t > 0.0 && t < 1.0) ++result_.snapped_crossings;
+            if (t > 0.0 && t < 1.0) ++curve_.snapped_crossings;
           }
         }
       }
@@ -298,7 +297,7 @@ class Straightener {
   }
 
   // The funnel path as curve points: a, then one point per portal (equal vertices merged), b.
-  std::vector<CurvePoint> curve_points(const std::vector<FaceHandle>& strip, const UnfoldedStrip& unfolded,
+  std::vector<StripPoint> curve_points(const std::vector<FaceHandle>& strip, const UnfoldedStrip& unfolded,
                                        const std::vector<FunnelApex>& apexes) {
     const std::vector<Portal>& portals = unfolded.portals;
     const int n = static_cast<int>(portals.size());
@@ -313,9 +312,9 @@ class Straightener {
       cross_segment(portals, apexes[j], apexes[j + 1], crossings);
     }
 
-    std::vector<CurvePoint> points{{a(), EdgeHandle(), position(mesh_, a()), -1}};
+    std::vector<StripPoint> points{{{a(), EdgeHandle(), position(mesh_, a())}, -1}};
     const auto add_vertex = [&](VertexHandle v, int strip_face) {
-      if (points.back().vertex != v) points.push_back({v, EdgeHandle(), position(mesh_, v), strip_face});
+      if (points.back().vertex != v) points.push_back({{v, EdgeHandle(), position(mesh_, v)}, strip_face});
     };
     for (int i = 0; i < n; ++i) {
       const Crossing& crossing = crossings[i];
@@ -324,7 +323,7 @@ class Straightener {
       } else {
         const Eigen::Vector3d point = (1.0 - crossing.t) * position(mesh_, portals[i].right) +
                                       crossing.t * position(mesh_, portals[i].left);
-        points.push_back({VertexHandle(), unfolded.edges[i], point, i});
+        points.push_back({{VertexHandle(), unfolded.edges[i], point}, i});
       }
     }
     add_vertex(b(), static_cast<int>(strip.size()) - 1);
@@ -333,10 +332,10 @@ class Straightener {
 
   // Cuts the curve from a vertex it passes twice back to the first visit (snapping or a strip
   // brushing past the same vertex again can close such a loop; the cut is shorter).
-  static std::vector<CurvePoint> without_loops(const std::vector<CurvePoint>& points) {
-    std::vector<CurvePoint> simple;
+  static std::vector<StripPoint> without_loops(const std::vector<StripPoint>& points) {
+    std::vector<StripPoint> simple;
     std::unordered_map<int, std::size_t> visited;
-    for (const CurvePoint& point : points) {
+    for (const StripPoint& point : points) {
       if (point.vertex.is_valid()) {
         const auto it = visited.find(point.vertex.idx());
         if (it != visited.end()) {
@@ -357,7 +356,7 @@ class Straightener {
   // Insertion splits each crossed face along one segment; a face crossed twice would need the
   // second segment to cut the first one's split edges.
   void check_faces_crossed_once(const std::vector<FaceHandle>& strip,
-                                const std::vector<CurvePoint>& points) const {
+                                const std::vector<StripPoint>& points) const {
     std::unordered_set<int> crossed;
     for (std::size_t k = 1; k < points.size(); ++k) {
       if (points[k - 1].vertex.is_valid() && points[k].vertex.is_valid()) continue;  // runs along an edge
@@ -369,54 +368,75 @@ class Straightener {
     }
   }
 
-  // Splits the crossed edges in curve order; each split's spoke joins the new vertex to the
-  // previous curve point, which is the corner of the (sub)face opposite the split edge.
-  void insert(const std::vector<CurvePoint>& points) {
-    std::vector<VertexHandle>& chain = result_.chain;
-    chain.assign(1, a());
-    for (std::size_t k = 1; k < points.size(); ++k) {
-      VertexHandle v = points[k].vertex;
-      if (!v.is_valid()) {
-        const HalfedgeHandle h = mesh_.halfedge_handle(points[k].edge, 0);
-        const VertexHandle ends[2] = {mesh_.from_vertex_handle(h), mesh_.to_vertex_handle(h)};
-        const int faces_before = static_cast<int>(mesh_.n_faces());
-        v = split_edge_keeping_provenance(mesh_, points[k].edge, points[k].point);
-        inherit_region(v, ends, faces_before);
-        ++result_.vertices_added;
-      }
-      XP_ASSERT_MSG(mesh_.find_halfedge(chain.back(), v).is_valid(), "inserted curve vertices "
-                                                                         << chain.back().idx() << " and "
-                                                                         << v.idx() << " are not adjacent");
-      chain.push_back(v);
-    }
-  }
-
-  // The faces an edge split at v created take the region flag of the face they were cut from
-  // (the face across the new spoke; same rule as split_edge_keeping_provenance).
-  void inherit_region(VertexHandle v, const VertexHandle (&ends)[2], int faces_before) {
-    region_mask_.resize(mesh_.n_faces(), false);
-    for (VertexHandle end : ends) {
-      const HalfedgeHandle h = mesh_.find_halfedge(v, end);
-      if (mesh_.is_boundary(h)) continue;
-      FaceHandle old_half = mesh_.face_handle(h);
-      FaceHandle new_half = mesh_.opposite_face_handle(mesh_.prev_halfedge_handle(h));
-      if (old_half.idx() >= faces_before) std::swap(old_half, new_half);
-      region_mask_[new_half.idx()] = region_mask_[old_half.idx()];
-    }
-  }
-
-  Mesh& mesh_;
-  std::vector<bool>& region_mask_;
+  const Mesh& mesh_;
+  const std::vector<bool>& region_mask_;
   const std::vector<VertexHandle>& path_;
   StraightenSettings settings_;
-  StraightenResult result_;
+  StraightenedCurve curve_;
 };
+
+// The faces an edge split at v created take the region flag of the face they were cut from
+// (the face across the new spoke; same rule as split_edge_keeping_provenance).
+void inherit_region(const Mesh& mesh, std::vector<bool>& region_mask, VertexHandle v,
+                    const VertexHandle (&ends)[2], int faces_before) {
+  region_mask.resize(mesh.n_faces(), false);
+  for (VertexHandle end : ends) {
+    const HalfedgeHandle h = mesh.find_halfedge(v, end);
+    if (mesh.is_boundary(h)) continue;
+    FaceHandle old_half = mesh.face_handle(h);
+    FaceHandle new_half = mesh.opposite_face_handle(mesh.prev_halfedge_handle(h));
+    if (old_half.idx() >= faces_before) std::swap(old_half, new_half);
+    region_mask[new_half.idx()] = region_mask[old_half.idx()];
+  }
+}
 
 }  // namespace
 
+StraightenedCurve straighten_curve(const Mesh& mesh, const std::vector<bool>& region_mask,
+                                   const std::vector<VertexHandle>& path, const StraightenSettings& settings) {
+  return Straightener(mesh, region_mask, path, settings).run();
+}
+
+// Splits the crossed edges in curve order; each split's spoke joins the new vertex to the
+// previous curve point, which is the corner of the (sub)face opposite the split edge.
+StraightenResult insert_curve(Mesh& mesh, std::vector<bool>& region_mask, const StraightenedCurve& curve) {
+  if (!has_provenance(mesh)) {
+    throw LayoutError("straighten_path: the mesh has no provenance (init_provenance was not called)");
+  }
+  XP_ASSERT_EQ(region_mask.size(), mesh.n_faces());
+  XP_ASSERT(curve.points.size() >= 2);
+  StraightenResult result;
+  result.snapped_crossings = curve.snapped_crossings;
+  result.rounds = curve.rounds;
+  result.reroutes = curve.reroutes;
+  result.converged = curve.converged;
+  result.contacts = curve.contacts;
+  result.boundary_contacts = static_cast<int>(curve.contacts.size());
+  result.input_length = curve.input_length;
+  result.settings = curve.settings;
+  std::vector<VertexHandle>& chain = result.chain;
+  chain.assign(1, curve.points.front().vertex);
+  for (std::size_t k = 1; k < curve.points.size(); ++k) {
+    VertexHandle v = curve.points[k].vertex;
+    if (!v.is_valid()) {
+      const HalfedgeHandle h = mesh.halfedge_handle(curve.points[k].edge, 0);
+      const VertexHandle ends[2] = {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h)};
+      const int faces_before = static_cast<int>(mesh.n_faces());
+      v = split_edge_keeping_provenance(mesh, curve.points[k].edge, curve.points[k].point);
+      inherit_region(mesh, region_mask, v, ends, faces_before);
+      ++result.vertices_added;
+    }
+    XP_ASSERT_MSG(mesh.find_halfedge(chain.back(), v).is_valid(),
+                  "inserted curve vertices " << chain.back().idx() << " and " << v.idx() << " are not adjacent");
+    chain.push_back(v);
+  }
+  result.length = chain_length(mesh, chain);
+  return result;
+}
+
 StraightenResult straighten_path(Mesh& mesh, std::vector<bool>& region_mask,
                                  const std::vector<VertexHandle>& path, const StraightenSettings& settings) {
-  return Straightener(mesh, region_mask, path, settings).run();
+  return insert_curve(mesh, region_mask, straighten_curve(mesh, region_mask, path, settings));
 }
 
 }  // namespace xparam

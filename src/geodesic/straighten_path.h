@@ -14,6 +14,8 @@
 
 #include "core/mesh.h"
 
+#include <Eigen/Core>
+
 #include <vector>
 
 namespace xparam {
@@ -31,6 +33,29 @@ struct StraightenSettings {
   int max_rounds = 1000;
 };
 
+/// One point of a straightened curve before insertion: a mesh vertex the curve passes through,
+/// or a point inside a mesh edge it crosses.
+struct CurvePoint {
+  VertexHandle vertex;  ///< valid: the curve passes through this vertex
+  EdgeHandle edge;      ///< otherwise: the edge crossed here
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< 3-D position
+};
+
+/// A straightened curve not inserted yet (straighten_curve); valid until the mesh changes.
+struct StraightenedCurve {
+  std::vector<CurvePoint> points;  ///< from the first to the last vertex of the input path
+  /// Interior curve vertices not inside the region (touching its boundary or the mesh
+  /// boundary), in curve order: the curve bends around them.
+  std::vector<VertexHandle> contacts;
+  int snapped_crossings = 0;  ///< crossings moved onto an existing vertex by snap_tolerance
+  int rounds = 0;             ///< funnel rounds run
+  int reroutes = 0;           ///< vertices the strip was swapped around
+  bool converged = false;     ///< false when max_rounds stopped a curve that could still shorten
+  double input_length = 0.0;  ///< length of the input path (mesh units)
+  double length = 0.0;        ///< length of the polyline through `points` (mesh units)
+  StraightenSettings settings;
+};
+
 /// What straighten_path did.
 struct StraightenResult {
   /// The new curve: mesh vertices from the first to the last vertex of the input path, each
@@ -44,13 +69,33 @@ struct StraightenResult {
   /// Interior chain vertices touching the region's boundary (or the mesh boundary): the curve
   /// bends around them, so it shares them with whatever bounds the region.
   int boundary_contacts = 0;
+  std::vector<VertexHandle> contacts;  ///< those vertices, in chain order
   double input_length = 0.0;  ///< length of the input path (mesh units)
   double length = 0.0;        ///< length of the returned chain (mesh units)
   StraightenSettings settings;
 };
 
 /// Straightens `path` into a locally shortest geodesic of the region formed by the faces f
-/// with region_mask[f.idx()] == true, then inserts it into `mesh`. Where nothing was snapped
+/// with region_mask[f.idx()] == true, without changing the mesh (see straighten_path for the
+/// method, the preconditions and the guarantees). Callers that must look at the curve before
+/// committing to it (boundary_stretching.h keeps curves off other curves) plan with this and
+/// insert with insert_curve.
+/// \pre region_mask.size() == mesh.n_faces()
+/// \throw LayoutError as straighten_path
+StraightenedCurve straighten_curve(const Mesh& mesh, const std::vector<bool>& region_mask,
+                                   const std::vector<VertexHandle>& path,
+                                   const StraightenSettings& settings = {});
+
+/// Inserts a planned curve into the mesh it was planned on (unchanged since): splits every
+/// crossed edge with split_edge_keeping_provenance; region_mask grows with the mesh and every
+/// new face inherits the flag of the face it was cut from.
+/// \pre has_provenance(mesh), `curve` came from straighten_curve on this very mesh state
+/// \throw LayoutError when the mesh has no provenance (then it is left untouched)
+StraightenResult insert_curve(Mesh& mesh, std::vector<bool>& region_mask, const StraightenedCurve& curve);
+
+/// Straightens `path` into a locally shortest geodesic of the region formed by the faces f
+/// with region_mask[f.idx()] == true, then inserts it into `mesh` (straighten_curve, then
+/// insert_curve). Where nothing was snapped
 /// the chain is locally shortest up to rounding; a snapped crossing bends it by at most about
 /// 2 * snap_tolerance radians (is_locally_shortest with 2.5 * snap_tolerance holds).
 ///

@@ -109,6 +109,10 @@ bool check_combinatorics(const Layout& layout, const LayoutCheckSettings& settin
     }
     if (settings.triangles && (walk.size() != 3 || corners.size() != 3)) {
       report.add("patch ", p, " is not a triangle of three distinct anchors: halfedges ", cycle_text(walk));
+    } else if (!settings.triangles && corners.size() != walk.size()) {
+      // A polygon domain needs one corner per anchor: a walk through an anchor twice has no
+      // simple boundary loop to parameterize.
+      report.add("patch ", p, " visits an anchor twice: halfedges ", cycle_text(walk));
     }
   }
   for (int h = 0; h < 2 * n_edges; ++h) {

@@ -12,8 +12,9 @@ namespace xparam {
 /// What check_layout demands beyond consistency.
 struct LayoutCheckSettings {
   /// Every patch a triangle of three distinct anchors, 3n-6 edges and 2n-4 patches (the layout
-  /// before patch merging). When false, patches may have more sides and only Euler's
-  /// n - edges + patches = 2 is demanded of the counts.
+  /// before patch merging). When false (a merged layout), patches may have more sides, each
+  /// still a polygon of distinct anchors, and only Euler's n - edges + patches = 2 is demanded
+  /// of the counts.
   bool triangles = true;
   /// At most this many violations are listed; the count of the rest is appended.
   int max_violations = 50;
