@@ -1,0 +1,100 @@
+#pragma once
+// Inputs shared by the benchmarks: the bundled Spot meshes refined to the sizes the issues name
+// (a ~12k-vertex template, a ~53k-vertex target) with 50 anchors, built once per process.
+#include "core/anchors.h"
+#include "core/mesh.h"
+#include "core/provenance.h"
+#include "io/mesh_loader.h"
+
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace xparam::bench {
+
+inline std::filesystem::path data(const std::string& relative) {
+  return std::filesystem::path(XPARAM_SOURCE_DIR) / "tests" / "data" / relative;
+}
+
+// One 1-to-4 midpoint subdivision (the surface stays the same, only finer); provenance starts
+// afresh, so the subdivided mesh is its own input mesh.
+inline Mesh subdivide(const Mesh& mesh) {
+  Mesh fine;
+  for (VertexHandle v : mesh.vertices()) fine.add_vertex(mesh.point(v));
+  std::vector<VertexHandle> midpoint(mesh.n_edges());
+  for (EdgeHandle e : mesh.edges()) {
+    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
+    midpoint[e.idx()] =
+        fine.add_vertex(0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
+  }
+  for (FaceHandle f : mesh.faces()) {
+    VertexHandle c[3], m[3];
+    int k = 0;
+    for (HalfedgeHandle h : mesh.fh_range(f)) {
+      c[k] = mesh.from_vertex_handle(h);
+      m[k] = midpoint[mesh.edge_handle(h).idx()];  // midpoint of edge c[k] -> c[k+1]
+      ++k;
+    }
+    fine.add_face(c[0], m[0], m[2]);
+    fine.add_face(c[1], m[1], m[0]);
+    fine.add_face(c[2], m[2], m[1]);
+    fine.add_face(m[0], m[1], m[2]);
+  }
+  init_provenance(fine);
+  return fine;
+}
+
+// `count` template vertices by Euclidean farthest-point sampling from vertex 0, and for each the
+// nearest target vertex (the two Spot meshes share a frame).
+struct SpotPair {
+  Mesh source = subdivide(load_mesh(data("spot.ply")).mesh);
+  Mesh target = subdivide(subdivide(subdivide(load_mesh(data("spot_low_resolution.obj")).mesh)));
+  std::vector<VertexHandle> source_anchors, target_anchors;
+
+  explicit SpotPair(int count) {
+    std::vector<double> gap(source.n_vertices(), std::numeric_limits<double>::infinity());
+    VertexHandle next(0);
+    while (static_cast<int>(source_anchors.size()) < count) {
+      source_anchors.push_back(next);
+      const Eigen::Vector3d p = position(source, next);
+      double widest = -1.0;
+      for (VertexHandle v : source.vertices()) {
+        gap[v.idx()] = std::min(gap[v.idx()], (position(source, v) - p).norm());
+        if (gap[v.idx()] > widest) {
+          widest = gap[v.idx()];
+          next = v;
+        }
+      }
+    }
+    for (VertexHandle a : source_anchors) {
+      VertexHandle best;
+      double best_distance = std::numeric_limits<double>::infinity();
+      for (VertexHandle v : target.vertices()) {
+        const double d = (position(target, v) - position(source, a)).squaredNorm();
+        if (d < best_distance) {
+          best_distance = d;
+          best = v;
+        }
+      }
+      target_anchors.push_back(best);
+    }
+  }
+};
+
+// The 50-anchor pair of the layout, pair and optimization benchmarks.
+inline const SpotPair& spot_pair_50() {
+  static const SpotPair pair(50);
+  return pair;
+}
+
+// Anchors named "a0", "a1", ... at the given vertices.
+inline AnchorSet named_anchors(const std::vector<VertexHandle>& vertices, const std::string& source) {
+  AnchorSet set;
+  set.source = source;
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    set.anchors.push_back({"a" + std::to_string(k), AnchorVertex{vertices[k].idx()}, "", 0});
+  return set;
+}
+
+}  // namespace xparam::bench
