@@ -25,11 +25,6 @@
 namespace xparam::cli {
 namespace {
 
-// Exit codes of `xparam batch` (CLI11's own parse errors exit through main).
-constexpr int kExitSomeFailed = 2;
-constexpr int kExitUsage = 1;
-constexpr int kExitFatal = 3;
-
 struct BatchOptions {
   std::string template_mesh;
   std::string template_anchors;

@@ -141,7 +141,7 @@ void run_check(const CheckOptions& options) {
     if (results.size() > 1) std::cout << usable << " of " << results.size() << " meshes usable\n";
   }
   // Exit status 1 (without a CLI11 message) when any mesh is unusable.
-  if (usable != results.size()) throw CLI::RuntimeError(1);
+  if (usable != results.size()) throw CLI::RuntimeError(kExitSomeFailed);
 }
 
 }  // namespace

@@ -6,6 +6,12 @@
 
 namespace xparam::cli {
 
+/// Exit codes shared by every subcommand (README, "Exit codes"). A command that ends with a
+/// code other than 0 throws CLI::RuntimeError(code) after printing why; main returns the code.
+inline constexpr int kExitUsage = 1;        ///< the command line is wrong (unknown option, missing file, bad value)
+inline constexpr int kExitSomeFailed = 2;   ///< the job ran, but some inputs failed (batch targets, check meshes)
+inline constexpr int kExitFatal = 3;        ///< the job could not run or a stage failed (bad template, unwritable output)
+
 void add_check_command(CLI::App& app);  ///< `xparam check MESH...` (check_command.cpp)
 void add_pair_command(CLI::App& app);   ///< `xparam pair --source S ... --out DIR` (pair_command.cpp)
 void add_batch_command(CLI::App& app);  ///< `xparam batch --template T --targets DIR --out A.h5` (batch_command.cpp)

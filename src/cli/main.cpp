@@ -21,15 +21,18 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a command's own verdict, already explained on stderr
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    const int help_or_error = app.exit(e);  // prints the help, the version or the usage error
+    return help_or_error == 0 ? 0 : xparam::cli::kExitUsage;
   } catch (const xparam::Error& e) {
     std::cerr << "xparam: " << e.what() << "\n";
-    return 1;
+    return xparam::cli::kExitFatal;
   } catch (const std::exception& e) {
     // Not an xparam::Error: a system failure (memory, file system) rather than a bad input.
     std::cerr << "xparam: unexpected error: " << e.what() << "\n";
-    return 1;
+    return xparam::cli::kExitFatal;
   }
   return 0;
 }
