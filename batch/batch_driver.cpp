@@ -111,6 +111,10 @@ std::string batch_options_json(const PairSettings& settings) {
   options["placement"]["snap_tolerance"] = settings.placement.snap_tolerance;
   options["placement"]["warn_snap_distance"] = settings.placement.warn_snap_distance;
   options["layout"]["greedy_diagonals"] = settings.layout.greedy_diagonals;
+  options["optimization"]["stretch"] = settings.optimization.stretch;
+  options["optimization"]["metric"] = std::string(to_string(settings.optimization.metric));
+  options["optimization"]["merge"] = settings.optimization.merge;
+  options["optimization"]["contact_clearance"] = settings.optimization.stretching.contact_clearance;
   return options.dump();
 }
 

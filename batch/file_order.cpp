@@ -1,24 +1,21 @@
 #include "batch/file_order.h"
 
-#include "core/orientation.h"
-
 #include <variant>
 
 namespace xparam {
 
-AnchorSet anchors_in_mesh_order(AnchorSet anchors, bool orientation_flipped) {
-  if (!orientation_flipped) return anchors;
+// to_file_order is its own inverse, so it also takes file order to mesh order.
+AnchorSet anchors_in_mesh_order(AnchorSet anchors, const FileOrder& order) {
   for (AnchorSpec& anchor : anchors.anchors)
     if (auto* point = std::get_if<SurfacePoint>(&anchor.location))
-      point->bary = to_file_order(point->bary, true);  // the swap is its own inverse
+      point->bary = to_file_order(order, point->face, point->bary);
   return anchors;
 }
 
-FeatureCurveSet curves_in_mesh_order(FeatureCurveSet curves, bool orientation_flipped) {
-  if (!orientation_flipped) return curves;
+FeatureCurveSet curves_in_mesh_order(FeatureCurveSet curves, const FileOrder& order) {
   for (FeatureCurveSpec& curve : curves.curves)
     for (CurvePointSpec& spec : curve.points)
-      if (auto* point = std::get_if<SurfacePoint>(&spec)) point->bary = to_file_order(point->bary, true);
+      if (auto* point = std::get_if<SurfacePoint>(&spec)) point->bary = to_file_order(order, point->face, point->bary);
   return curves;
 }
 

@@ -41,12 +41,12 @@ LoadedMesh load_target_mesh(const PreparedTemplate& prepared, const TargetSpec& 
 // Anchors, matched by name against the template's (match_anchors throws naming both files),
 // and the ground truth when given.
 void read_target_inputs(const PreparedTemplate& prepared, const TargetSpec& target, LoadedTarget& out) {
-  out.anchors = anchors_in_mesh_order(read_anchors(target.anchors), out.loaded.orientation_flipped);
+  out.anchors = anchors_in_mesh_order(read_anchors(target.anchors), out.loaded.file_order);
   match_anchors(prepared.anchors, out.anchors);
   if (!target.ground_truth.empty()) {
     out.ground_truth = read_ground_truth(target.ground_truth);
-    check_ground_truth(*out.ground_truth, prepared.loaded.mesh.n_vertices(), out.loaded.mesh.n_vertices(),
-                       target.ground_truth);
+    check_ground_truth(*out.ground_truth, prepared.loaded.file_order.file_vertices,
+                       out.loaded.file_order.file_vertices, target.ground_truth);
   }
 }
 
@@ -63,17 +63,21 @@ Eigen::VectorXd to_eigen_vector(const Vector& values) {
   return out;
 }
 
-// The archive arrays and metrics of a finished mapping; barycentrics in the target file's order.
-void fill_outputs(const PairMapping& mapping, const LoadedTarget& target, TargetRecord& record) {
-  const bool flipped = target.loaded.orientation_flipped;
-  const auto n_vertices = static_cast<Eigen::Index>(mapping.correspondence.size());
-  record.remesh_vertices = mapping.remesh_vertices;
+// The archive arrays and metrics of a finished mapping: one row per template FILE vertex (the
+// copies of split pinched vertices come after them and are dropped), barycentrics in the target
+// file's corner order.
+void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, const LoadedTarget& target,
+                  TargetRecord& record) {
+  const FileOrder& order = target.loaded.file_order;
+  const Eigen::Index n_vertices = prepared.loaded.file_order.file_vertices;
+  XP_ASSERT(n_vertices <= mapping.remesh_vertices.rows());
+  record.remesh_vertices = mapping.remesh_vertices.topRows(n_vertices);
   record.corr_face.resize(n_vertices);
   record.corr_bary.resize(n_vertices, 3);
   for (Eigen::Index v = 0; v < n_vertices; ++v) {
     const SurfacePoint& point = mapping.correspondence[static_cast<std::size_t>(v)];
     record.corr_face[v] = point.face;
-    record.corr_bary.row(v) = to_file_order(point.bary, flipped).transpose();
+    record.corr_bary.row(v) = to_file_order(order, point.face, point.bary).transpose();
   }
   record.face_patch = Eigen::Map<const Eigen::VectorXi>(mapping.face_patch.data(),
                                                         static_cast<Eigen::Index>(mapping.face_patch.size()));
@@ -88,7 +92,7 @@ void fill_outputs(const PairMapping& mapping, const LoadedTarget& target, Target
     for (Eigen::Index p = 0; p < n_points; ++p) {
       const SurfacePoint& point = curve.points[static_cast<std::size_t>(p)];
       out.face.push_back(point.face);
-      out.bary.row(p) = to_file_order(point.bary, flipped).transpose();
+      out.bary.row(p) = to_file_order(order, point.face, point.bary).transpose();
       out.xyz.row(p) = curve.positions[static_cast<std::size_t>(p)].transpose();
     }
     record.curves.push_back(std::move(out));
@@ -100,9 +104,11 @@ void fill_outputs(const PairMapping& mapping, const LoadedTarget& target, Target
   metrics.stretch_max_sv = mapping.distortion.all.stretch_max_sv;
   metrics.flipped_faces = static_cast<int>(mapping.quality.flipped_faces.size());
   metrics.area_ratio = mapping.quality.area_ratio;
+  metrics.swaps = mapping.optimization.swaps;
+  metrics.merges = mapping.optimization.merges;
   if (target.ground_truth)
     metrics.gt_error =
-        ground_truth_error(mapping.remesh_vertices, *target.ground_truth, vertex_matrix(target.loaded.mesh));
+        ground_truth_error(record.remesh_vertices, *target.ground_truth, vertex_matrix(target.loaded.mesh));
 }
 
 // The error text of a failed target: the message, prefixed by the mesh file unless it already
@@ -144,7 +150,7 @@ void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, cons
   record.seconds[kOptimize] = mapping.seconds.optimize;
   record.seconds[kParameterize] = mapping.seconds.parameterize;
   record.seconds[kCompose] = mapping.seconds.compose;
-  fill_outputs(mapping, loaded, record);
+  fill_outputs(mapping, prepared, loaded, record);
   record.seconds[kOutputs] = mapping.seconds.metrics + watch.lap();
   record.ok = true;
 }

@@ -15,24 +15,15 @@
 namespace xparam {
 namespace {
 
-// File corner order of face f: the loader stored file triangle (a, b, c) as (a, c, b) when flipped.
-std::array<int, 3> file_corners(const Mesh& mesh, FaceHandle f, bool orientation_flipped) {
-  std::array<int, 3> corners{};
-  int k = 0;
-  for (VertexHandle v : mesh.fv_range(f)) corners[k++] = v.idx();
-  if (orientation_flipped) std::swap(corners[1], corners[2]);
-  return corners;
-}
-
-// The input vertex nearest to a placed anchor: the corner of its input face with the largest
-// barycentric coordinate (ties to the first corner).
-int nearest_input_vertex(const Mesh& mesh, const SurfacePoint& point) {
+// The file vertex nearest to a placed anchor: the corner of its input face with the largest
+// barycentric coordinate (ties to the first corner in the mesh's order).
+int nearest_input_vertex(const Mesh& mesh, const FileOrder& order, const SurfacePoint& point) {
   int best = 0;
   for (int k = 1; k < 3; ++k)
     if (point.bary[k] > point.bary[best]) best = k;
   int k = 0;
   for (VertexHandle v : mesh.fv_range(FaceHandle(point.face)))
-    if (k++ == best) return v.idx();
+    if (k++ == best) return order.file_vertex(v.idx());
   XP_ASSERT_MSG(false, "face " << point.face << " has fewer than three corners");
   return -1;
 }
@@ -40,7 +31,7 @@ int nearest_input_vertex(const Mesh& mesh, const SurfacePoint& point) {
 TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate& prepared,
                            const PlacedAnchors& placed) {
   const Mesh& mesh = prepared.loaded.mesh;
-  const bool flipped = prepared.loaded.orientation_flipped;
+  const FileOrder& order = prepared.loaded.file_order;
   TemplateRecord record;
   record.mesh_file = inputs.mesh.string();
   record.anchors_file = inputs.anchors.string();
@@ -51,11 +42,12 @@ TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate&
     record.curves_sha256 = sha256_file_hex(inputs.curves);
   }
 
-  record.vertices.resize(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
-  for (VertexHandle v : mesh.vertices()) record.vertices.row(v.idx()) = position(mesh, v).transpose();
+  // The file's vertices only: the copies of split pinched vertices have no row of their own.
+  record.vertices.resize(order.file_vertices, 3);
+  for (int v = 0; v < order.file_vertices; ++v) record.vertices.row(v) = position(mesh, VertexHandle(v)).transpose();
   record.faces.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
   for (FaceHandle f : mesh.faces()) {
-    const std::array<int, 3> corners = file_corners(mesh, f, flipped);
+    const std::array<int, 3> corners = file_triangle(mesh, order, f);
     record.faces.row(f.idx()) << corners[0], corners[1], corners[2];
   }
 
@@ -64,7 +56,7 @@ TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate&
     const auto& location = prepared.anchors.anchors[a].location;
     record.anchor_vertices.push_back(std::holds_alternative<AnchorVertex>(location)
                                          ? std::get<AnchorVertex>(location).index
-                                         : nearest_input_vertex(mesh, placed.anchors[a].input_point));
+                                         : nearest_input_vertex(mesh, order, placed.anchors[a].input_point));
   }
 
   for (const FeatureCurve& curve : prepared.curves) {
@@ -73,7 +65,8 @@ TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate&
     out.bary.resize(static_cast<Eigen::Index>(curve.points.size()), 3);
     for (std::size_t p = 0; p < curve.points.size(); ++p) {
       out.face.push_back(curve.points[p].face);
-      out.bary.row(static_cast<Eigen::Index>(p)) = to_file_order(curve.points[p].bary, flipped).transpose();
+      out.bary.row(static_cast<Eigen::Index>(p)) =
+          to_file_order(order, curve.points[p].face, curve.points[p].bary).transpose();
     }
     record.curves.push_back(std::move(out));
   }
@@ -91,13 +84,13 @@ PreparedTemplate prepare_template(const TemplateInputs& inputs) {
     throw InputError(inputs.mesh.string() + ": the template has genus " +
                      (report.genus ? std::to_string(*report.genus) : std::string("undefined")) +
                      "; the consistent layout needs a closed genus-0 template");
-  const bool flipped = prepared.loaded.orientation_flipped;
-  prepared.anchors = anchors_in_mesh_order(read_anchors(inputs.anchors), flipped);
+  const FileOrder& order = prepared.loaded.file_order;
+  prepared.anchors = anchors_in_mesh_order(read_anchors(inputs.anchors), order);
   // Placing on a copy proves every anchor lands on the template (map_pair places them again).
   Mesh refined = prepared.loaded.mesh;
   const PlacedAnchors placed = place_anchors(refined, prepared.loaded.mesh, prepared.anchors);
   if (!inputs.curves.empty())
-    prepared.curves = validate_curves(curves_in_mesh_order(read_curves(inputs.curves), flipped), prepared.loaded.mesh);
+    prepared.curves = validate_curves(curves_in_mesh_order(read_curves(inputs.curves), order), prepared.loaded.mesh);
   prepared.record = make_record(inputs, prepared, placed);
   return prepared;
 }

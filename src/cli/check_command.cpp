@@ -23,6 +23,7 @@ namespace {
 struct CheckOptions {
   std::vector<std::string> meshes;
   bool json = false;
+  bool no_repair = false;
 };
 
 // What checking one file found: a report, or the error that stopped reading it.
@@ -34,13 +35,15 @@ struct CheckedFile {
   bool usable() const { return report && report->usable && error.empty(); }
 };
 
-CheckedFile check_file(const std::string& file) {
+CheckedFile check_file(const std::string& file, const ValidationSettings& settings) {
   CheckedFile checked{file, std::nullopt, std::nullopt, ""};
   try {
     const TriangleSoup soup = read_triangle_soup(file);
-    checked.report = validate_soup(soup);
-    // Building proves OpenMesh accepts what validation called usable.
-    if (checked.report->usable) checked.signed_volume = signed_volume(build_mesh(soup));
+    checked.report = validate_soup(soup, settings);
+    const MeshReport& report = *checked.report;
+    // Building proves OpenMesh accepts what validation called usable (repaired as the loader does).
+    const bool repaired = !report.reoriented_faces.empty() || !report.split_vertices.empty();
+    if (report.usable) checked.signed_volume = signed_volume(build_mesh(repaired ? repair_soup(soup).soup : soup));
   } catch (const Error& e) {
     checked.error = e.what();
   }
@@ -64,8 +67,16 @@ nlohmann::json to_json(const CheckedFile& checked) {
   }
   const MeshReport& r = *checked.report;
   nlohmann::json warnings = nlohmann::json::array();
+  nlohmann::json repaired = nlohmann::json::array();
   for (const Problem* p : r.errors()) problems.push_back(p->message);
   for (const Problem* p : r.warnings()) warnings.push_back(p->message);
+  for (const Problem* p : r.repaired()) repaired.push_back(p->message);
+  nlohmann::json splits = nlohmann::json::array();
+  size_t copies = 0;
+  for (const VertexSplit& split : r.split_vertices) {
+    splits.push_back({{"vertex", split.vertex}, {"copies", split.copies}});
+    copies += split.copies.size();
+  }
   out["vertices"] = r.vertices;
   out["faces"] = r.faces;
   out["edges"] = r.edges;
@@ -91,6 +102,10 @@ nlohmann::json to_json(const CheckedFile& checked) {
   out["signed_volume"] = checked.signed_volume ? nlohmann::json(*checked.signed_volume) : nlohmann::json(nullptr);
   out["problems"] = problems;
   out["warnings"] = warnings;
+  out["repaired"] = repaired;
+  out["reoriented_faces"] = r.reoriented_faces.size();
+  out["split_vertices"] = splits;
+  out["vertex_copies"] = copies;
   return out;
 }
 
@@ -119,7 +134,10 @@ void print_human(const CheckedFile& checked, std::ostream& out) {
       out << ", signed volume " << *checked.signed_volume
           << (*checked.signed_volume < 0 ? " (faces point inward: flipped at load)" : "");
     out << "\n";
+    if (const std::string repairs = describe_repairs(r); !repairs.empty())
+      out << "  repairs (the loader applies them; --no-repair to refuse instead): " << repairs << "\n";
     for (const Problem* p : r.errors()) out << "  error: " << p->message << "\n";
+    for (const Problem* p : r.repaired()) out << "  repaired: " << p->message << "\n";
     for (const Problem* p : r.warnings()) out << "  warning: " << p->message << "\n";
   }
   if (!checked.error.empty()) out << "  error: " << checked.error << "\n";
@@ -128,7 +146,9 @@ void print_human(const CheckedFile& checked, std::ostream& out) {
 void run_check(const CheckOptions& options) {
   std::vector<CheckedFile> results;
   results.reserve(options.meshes.size());
-  for (const std::string& file : options.meshes) results.push_back(check_file(file));
+  ValidationSettings settings;
+  settings.repair = !options.no_repair;
+  for (const std::string& file : options.meshes) results.push_back(check_file(file, settings));
 
   size_t usable = 0;
   for (const CheckedFile& checked : results) usable += checked.usable();
@@ -149,11 +169,14 @@ void run_check(const CheckOptions& options) {
 void add_check_command(CLI::App& app) {
   auto options = std::make_shared<CheckOptions>();
   CLI::App* check = app.add_subcommand(
-      "check", "Validate mesh files (OBJ, PLY, OFF, STL): counts, topology, genus, defects. Exit status 0 "
-               "when every mesh is usable (closed, one component, 2-manifold, consistently oriented, no "
-               "degenerate faces), 1 otherwise.");
+      "check", "Validate mesh files (OBJ, PLY, OFF, STL): counts, topology, genus, defects. Faces wound "
+               "against their neighbours are re-oriented and pinched vertices split, as the loader does "
+               "(listed as repairs). Exit status 0 when every mesh is usable (closed, one component, "
+               "2-manifold edges, orientable, no degenerate faces), 2 otherwise.");
   check->add_option("meshes", options->meshes, "Mesh files to check")->required()->check(CLI::ExistingFile);
   check->add_flag("--json", options->json, "Print a JSON array with one object per file");
+  check->add_flag("--no-repair", options->no_repair,
+                  "Judge the files as they are: inconsistent orientation and pinched vertices block use");
   check->callback([options] { run_check(*options); });
 }
 

@@ -125,8 +125,11 @@ int run_layout(const LayoutOptions& options) {
   out["refined_vertices"] = {{"source", result.refined_vertices[0]}, {"target", result.refined_vertices[1]}};
   out["anchor_vertices_inserted"] = {{"source", source_placed.vertices_inserted},
                                      {"target", target_placed.vertices_inserted}};
-  out["orientation_flipped"] = {{"source", source.orientation_flipped},
-                                {"target", target.orientation_flipped}};
+  // Faces stored in the reverse of the file's corner order (all of them when the file faced
+  // inward) and the loader's repairs (core/validation.h, describe_repairs).
+  out["reversed_faces"] = {{"source", source.file_order.reversed_count()},
+                           {"target", target.file_order.reversed_count()}};
+  out["repairs"] = {{"source", describe_repairs(source.report)}, {"target", describe_repairs(target.report)}};
   out["edge_counts"] = {
       {"tree", result.tree_edges}, {"greedy", result.greedy_edges}, {"completion", result.completion_edges}};
   out["total_path_length"] = {{"source", result.total_path_length[0]},

@@ -1,5 +1,7 @@
 // `xparam pair`: cross-parameterize one template against one target and write the results.
+#include "batch/file_order.h"
 #include "cli/commands.h"
+#include "cli/optimization_options.h"
 #include "cli/pair_outputs.h"
 #include "io/anchor_reader.h"
 #include "io/curve_reader.h"
@@ -20,6 +22,7 @@ struct PairOptions {
   std::string curves;
   std::string out;
   bool quiet = false;
+  DomainOptimizationSettings optimization;
 };
 
 void run_pair(const PairOptions& options) {
@@ -29,18 +32,26 @@ void run_pair(const PairOptions& options) {
   progress("load");
   const LoadedMesh source = load_mesh(options.source);
   const LoadedMesh target = load_mesh(options.target);
-  const AnchorSet source_anchors = read_anchors(options.source_anchors);
-  const AnchorSet target_anchors = read_anchors(options.target_anchors);
+  for (const LoadedMesh* mesh : {&source, &target})
+    if (const std::string repairs = describe_repairs(mesh->report); !repairs.empty())
+      progress(mesh->path.string() + ": repaired: " + repairs);
+  // Face + barycentric inputs are written against the files' corner order.
+  const AnchorSet source_anchors = anchors_in_mesh_order(read_anchors(options.source_anchors), source.file_order);
+  const AnchorSet target_anchors = anchors_in_mesh_order(read_anchors(options.target_anchors), target.file_order);
   std::vector<FeatureCurve> curves;
-  if (!options.curves.empty()) curves = validate_curves(read_curves(options.curves), source.mesh);
+  if (!options.curves.empty())
+    curves = validate_curves(curves_in_mesh_order(read_curves(options.curves), source.file_order), source.mesh);
 
-  const PairMapping mapping = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, curves, {}, progress);
+  PairSettings settings;
+  settings.optimization = options.optimization;
+  const PairMapping mapping = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, curves, settings, progress);
   progress("outputs");
   write_pair_outputs(options.out, source, target, mapping);
   for (const PlacedAnchors& placed : mapping.anchors) {
     for (const std::string& warning : placed.warnings) std::cerr << "xparam pair: warning: " << warning << "\n";
   }
-  std::cout << "E_L2 " << mapping.distortion.all.e_l2 << "  E_ang " << mapping.distortion.all.e_ang
+  std::cout << "swaps " << mapping.optimization.swaps << "  merges " << mapping.optimization.merges << "  E_L2 "
+            << mapping.distortion.all.e_l2 << "  E_ang " << mapping.distortion.all.e_ang
             << "  flipped faces " << mapping.quality.flipped_faces.size() << "  area ratio "
             << mapping.quality.area_ratio << "  (" << mapping.seconds.total << " s)\n"
             << "results in " << options.out << "\n";
@@ -65,6 +76,7 @@ void add_pair_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("--out,-o", options->out, "Output directory")->required();
   command->add_flag("--quiet,-q", options->quiet, "No progress on stderr");
+  add_optimization_options(*command, options->optimization);
   command->callback([options] { run_pair(*options); });
 }
 

@@ -14,23 +14,19 @@
 namespace xparam::cli {
 namespace {
 
-// Template faces as the template file lists them (the loader may have reversed them).
+// Template faces as the template file lists them (the loader may have reversed some and
+// renumbered corners at split pinched vertices).
 std::vector<std::array<int, 3>> file_triangles(const LoadedMesh& mesh) {
   std::vector<std::array<int, 3>> triangles;
   triangles.reserve(mesh.mesh.n_faces());
-  for (FaceHandle f : mesh.mesh.faces()) {
-    std::array<int, 3> t{};
-    int k = 0;
-    for (VertexHandle v : mesh.mesh.fv_range(f)) t[k++] = v.idx();
-    if (mesh.orientation_flipped) std::swap(t[1], t[2]);
-    triangles.push_back(t);
-  }
+  for (FaceHandle f : mesh.mesh.faces()) triangles.push_back(file_triangle(mesh.mesh, mesh.file_order, f));
   return triangles;
 }
 
-std::vector<Eigen::Vector3d> rows(const Eigen::MatrixX3d& matrix) {
-  std::vector<Eigen::Vector3d> result(matrix.rows());
-  for (int i = 0; i < matrix.rows(); ++i) result[i] = matrix.row(i).transpose();
+// The first `n` rows: one per template file vertex (copies of split pinched vertices follow them).
+std::vector<Eigen::Vector3d> rows(const Eigen::MatrixX3d& matrix, int n) {
+  std::vector<Eigen::Vector3d> result(n);
+  for (int i = 0; i < n; ++i) result[i] = matrix.row(i).transpose();
   return result;
 }
 
@@ -44,13 +40,13 @@ std::array<std::uint8_t, 3> stretch_color(double stretch) {
           static_cast<std::uint8_t>(std::lround(255 * blue))};
 }
 
-std::string correspondence_csv(const LoadedMesh& target, const PairMapping& mapping) {
+std::string correspondence_csv(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping) {
   std::ostringstream out;
   out.precision(17);
   out << "vertex,face,b0,b1,b2\n";
-  for (size_t v = 0; v < mapping.correspondence.size(); ++v) {
-    const SurfacePoint& p = mapping.correspondence[v];
-    const Eigen::Vector3d bary = to_file_order(p.bary, target.orientation_flipped);
+  for (int v = 0; v < source.file_order.file_vertices; ++v) {
+    const SurfacePoint& p = mapping.correspondence[static_cast<size_t>(v)];
+    const Eigen::Vector3d bary = to_file_order(target.file_order, p.face, p.bary);
     out << v << ',' << p.face << ',' << bary[0] << ',' << bary[1] << ',' << bary[2] << '\n';
   }
   return out.str();
@@ -76,6 +72,18 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
       {"refined_vertices", {mapping.layout.refined_vertices[0], mapping.layout.refined_vertices[1]}},
       {"degenerate_lpbds", {mapping.fallback_polygons[0], mapping.fallback_polygons[1]}},
       {"inverted_parameter_triangles", {mapping.inverted_triangles[0], mapping.inverted_triangles[1]}},
+      {"optimization",
+       {{"metric", std::string(to_string(mapping.optimization.settings.metric))},
+        {"stretch", mapping.optimization.settings.stretch},
+        {"merge", mapping.optimization.settings.merge},
+        {"swaps", mapping.optimization.swaps},
+        {"refused_swaps", mapping.optimization.refused_swaps},
+        {"merges", mapping.optimization.merges},
+        {"vertices_added", {mapping.optimization.vertices_added[0], mapping.optimization.vertices_added[1]}},
+        {"seconds",
+         {{"stretch", mapping.optimization.seconds_stretch},
+          {"swap", mapping.optimization.seconds_swap},
+          {"merge", mapping.optimization.seconds_merge}}}}},
       {"seconds",
        {{"anchors", mapping.seconds.anchors},
         {"layout", mapping.seconds.layout},
@@ -98,7 +106,7 @@ nlohmann::json curves_json(const LoadedMesh& target, const PairMapping& mapping)
   for (const MappedCurve& curve : mapping.curves) {
     nlohmann::json points = nlohmann::json::array();
     for (size_t i = 0; i < curve.points.size(); ++i) {
-      const Eigen::Vector3d bary = to_file_order(curve.points[i].bary, target.orientation_flipped);
+      const Eigen::Vector3d bary = to_file_order(target.file_order, curve.points[i].face, curve.points[i].bary);
       const Eigen::Vector3d& x = curve.positions[i];
       points.push_back({{"face", curve.points[i].face},
                         {"barycentric", {bary[0], bary[1], bary[2]}},
@@ -115,9 +123,9 @@ void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& sour
                         const PairMapping& mapping) {
   std::filesystem::create_directories(dir);
   const std::vector<std::array<int, 3>> faces = file_triangles(source);
-  const std::vector<Eigen::Vector3d> remesh = rows(mapping.remesh_vertices);
+  const std::vector<Eigen::Vector3d> remesh = rows(mapping.remesh_vertices, source.file_order.file_vertices);
   write_obj(dir / "remesh.obj", remesh, faces);
-  write_text_atomically(dir / "correspondence.csv", correspondence_csv(target, mapping));
+  write_text_atomically(dir / "correspondence.csv", correspondence_csv(source, target, mapping));
 
   PlyAttributes attributes;
   attributes.face_doubles.push_back({"l2_stretch", mapping.distortion.face_l2_stretch});

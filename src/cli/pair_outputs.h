@@ -13,7 +13,8 @@ namespace xparam::cli {
 /// feature curves, curves.json and curves.obj into `dir` (created if missing). Every file is
 /// written whole or not at all (temporary file + rename); metrics.json comes last, so its
 /// presence marks a complete result. Faces and barycentrics are reported in the input FILES'
-/// vertex order, whatever orientation the loader normalized to.
+/// vertex and corner order, whatever the loader re-oriented; one row per template file vertex
+/// (the copies of split pinched vertices have none).
 void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& source, const LoadedMesh& target,
                         const PairMapping& mapping);
 

@@ -16,7 +16,8 @@ enum class TriangleOrder {
 /// Build the mesh of `soup`: vertex i is file vertex i, face j is file triangle j. OpenMesh's
 /// fv_range(face j) yields the corners in the order they were added, (a, b, c) or (a, c, b),
 /// so a SurfacePoint's barycentrics on face j refer to that order (to_file_order converts).
-/// \pre validate_soup(soup).usable (closed, 2-manifold, consistently oriented)
+/// \pre `soup` itself is closed, 2-manifold and consistently oriented: validate_soup(soup) is
+///   usable without repairs, or `soup` is repair_soup's result for a usable file (core/validation.h)
 /// \throw InputError naming the soup's file and the face when OpenMesh refuses a face.
 Mesh build_mesh(const TriangleSoup& soup, TriangleOrder order = TriangleOrder::AsInFile);
 

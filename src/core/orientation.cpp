@@ -1,6 +1,11 @@
 #include "core/orientation.h"
 
+#include "core/errors.h"
+
 #include <Eigen/Geometry>
+
+#include <algorithm>
+#include <utility>
 
 namespace xparam {
 
@@ -24,9 +29,34 @@ double signed_volume(const Mesh& mesh) {
   return six_volume / 6.0;
 }
 
-Eigen::Vector3d to_file_order(const Eigen::Vector3d& bary, bool orientation_flipped) {
-  if (!orientation_flipped) return bary;
+FileOrder FileOrder::identity(int faces, int vertices) {
+  return {std::vector<bool>(static_cast<size_t>(faces), false), vertices, {}};
+}
+
+bool FileOrder::is_reversed(int face) const {
+  return face >= 0 && static_cast<size_t>(face) < reversed.size() && reversed[face];
+}
+
+int FileOrder::reversed_count() const { return static_cast<int>(std::count(reversed.begin(), reversed.end(), true)); }
+
+int FileOrder::file_vertex(int vertex) const {
+  XP_ASSERT_MSG(vertex >= 0 && vertex < file_vertices + static_cast<int>(copy_of.size()),
+                "vertex " << vertex << " of " << file_vertices << " + " << copy_of.size() << " copies");
+  return vertex < file_vertices ? vertex : copy_of[vertex - file_vertices];
+}
+
+Eigen::Vector3d to_file_order(const FileOrder& order, int face, const Eigen::Vector3d& bary) {
+  if (!order.is_reversed(face)) return bary;
   return {bary[0], bary[2], bary[1]};
+}
+
+std::array<int, 3> file_triangle(const Mesh& mesh, const FileOrder& order, FaceHandle f) {
+  std::array<int, 3> corners{};
+  int k = 0;
+  for (VertexHandle v : mesh.fv_range(f)) corners[k++] = order.file_vertex(v.idx());
+  XP_ASSERT_EQ(k, 3);
+  if (order.is_reversed(f.idx())) std::swap(corners[1], corners[2]);
+  return corners;
 }
 
 }  // namespace xparam

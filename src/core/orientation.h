@@ -2,11 +2,16 @@
 /// \file
 /// Orientation of a closed mesh: outward normals mean positive signed volume. Both meshes
 /// of a pair are normalized to it at load, so "counter-clockwise around an anchor" means the
-/// same on both (../shared/LAYOUT.md, "Orientation first").
+/// same on both (../shared/LAYOUT.md, "Orientation first"). The loader may store some faces
+/// with their corners in the reverse of the file's order and may append copies of pinched
+/// vertices (io/mesh_loader.h); FileOrder converts between the mesh's numbering and the file's.
 
 #include "core/mesh.h"
 
 #include <Eigen/Core>
+
+#include <array>
+#include <vector>
 
 namespace xparam {
 
@@ -16,11 +21,37 @@ namespace xparam {
 /// open mesh it depends on the origin.
 double signed_volume(const Mesh& mesh);
 
-/// Barycentrics of a point on an input face, from mesh corner order to file corner order.
-/// A mesh built with TriangleOrder::Reversed stores file triangle (a, b, c) as face
-/// (a, c, b), so a SurfacePoint bary (b_a, b_c, b_b) becomes (b_a, b_b, b_c); without the
-/// flip it is returned unchanged. The swap is its own inverse (it also converts file order
-/// to mesh order).
-Eigen::Vector3d to_file_order(const Eigen::Vector3d& bary, bool orientation_flipped);
+/// How a loaded mesh relates to its file. Mesh face j is file triangle j, stored either as the
+/// file's (a, b, c) or reversed as (a, c, b); mesh vertex i < file_vertices is file vertex i,
+/// and the vertices after them are copies made by splitting pinched vertices.
+struct FileOrder {
+  /// Per mesh face: true when file triangle (a, b, c) is stored as (a, c, b).
+  std::vector<bool> reversed;
+  /// Number of vertices in the file.
+  int file_vertices = 0;
+  /// copy_of[k]: the file vertex that mesh vertex file_vertices + k is a copy of.
+  std::vector<int> copy_of;
+
+  /// The identity for a mesh with `faces` faces and `vertices` vertices, as in the file.
+  static FileOrder identity(int faces, int vertices);
+
+  /// True when mesh face `face` is stored reversed; false for an index outside the faces (so an
+  /// input naming a wrong face is left for the check that reports it).
+  bool is_reversed(int face) const;
+  /// How many faces are stored reversed.
+  int reversed_count() const;
+  /// The file vertex of mesh vertex `vertex`: itself, or the vertex a copy was made from.
+  /// \pre 0 <= vertex < file_vertices + copy_of.size()
+  int file_vertex(int vertex) const;
+};
+
+/// Barycentrics of a point on mesh face `face`, from the mesh's corner order to the file's:
+/// on a reversed face the mesh's (b_a, b_c, b_b) becomes (b_a, b_b, b_c); otherwise unchanged.
+/// The swap is its own inverse, so this also converts file order to mesh order.
+Eigen::Vector3d to_file_order(const FileOrder& order, int face, const Eigen::Vector3d& bary);
+
+/// The file's triangle of mesh face `f`: file vertex indices (copies replaced by their
+/// originals) in the file's corner order.
+std::array<int, 3> file_triangle(const Mesh& mesh, const FileOrder& order, FaceHandle f);
 
 }  // namespace xparam

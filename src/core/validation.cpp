@@ -39,7 +39,7 @@ const char* to_string(ProblemKind kind) {
 std::vector<const Problem*> MeshReport::errors() const {
   std::vector<const Problem*> result;
   for (const Problem& problem : problems)
-    if (blocks_use(problem.kind)) result.push_back(&problem);
+    if (blocks_use(problem.kind) && !problem.repaired) result.push_back(&problem);
   return result;
 }
 
@@ -47,6 +47,13 @@ std::vector<const Problem*> MeshReport::warnings() const {
   std::vector<const Problem*> result;
   for (const Problem& problem : problems)
     if (!blocks_use(problem.kind)) result.push_back(&problem);
+  return result;
+}
+
+std::vector<const Problem*> MeshReport::repaired() const {
+  std::vector<const Problem*> result;
+  for (const Problem& problem : problems)
+    if (problem.repaired) result.push_back(&problem);
   return result;
 }
 
@@ -80,6 +87,133 @@ struct EdgeUse {
   int face;
   bool forward;
 };
+
+bool has_repeated_index(const std::array<int, 3>& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
+
+// Every face's use of every undirected edge, sorted by edge and then face, so the uses of one
+// edge are adjacent. A face that repeats an index uses one edge at most once here.
+std::vector<EdgeUse> sorted_edge_uses(const TriangleSoup& soup) {
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * soup.triangles.size());
+  for (int f = 0; f < static_cast<int>(soup.triangles.size()); ++f) {
+    const auto& t = soup.triangles[f];
+    for (int k = 0; k < 3; ++k) {
+      const int from = t[k];
+      const int to = t[(k + 1) % 3];
+      if (from == to) continue;
+      uses.push_back({std::min(from, to), std::max(from, to), f, from < to});
+    }
+  }
+  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+    return std::tie(x.a, x.b, x.face, x.forward) < std::tie(y.a, y.b, y.face, y.forward);
+  });
+  uses.erase(std::unique(uses.begin(), uses.end(),
+                         [](const EdgeUse& x, const EdgeUse& y) {
+                           return x.a == y.a && x.b == y.b && x.face == y.face;
+                         }),
+             uses.end());
+  return uses;
+}
+
+// The faces around every vertex in face order (faces that repeat an index left out), and the
+// fans they form: groups of faces joined across edges through the vertex.
+class VertexFans {
+ public:
+  explicit VertexFans(const TriangleSoup& soup) : soup_(soup), offsets_(soup.vertices.size() + 1, 0) {
+    const auto n_faces = static_cast<int>(soup.triangles.size());
+    for (int f = 0; f < n_faces; ++f) {
+      if (has_repeated_index(soup.triangles[f])) continue;
+      for (int v : soup.triangles[f]) ++offsets_[v + 1];
+    }
+    std::partial_sum(offsets_.begin(), offsets_.end(), offsets_.begin());
+    incident_.resize(offsets_.back());
+    std::vector<int> fill(offsets_.begin(), offsets_.end() - 1);
+    for (int f = 0; f < n_faces; ++f) {
+      if (has_repeated_index(soup.triangles[f])) continue;
+      for (int v : soup.triangles[f]) incident_[fill[v]++] = f;
+    }
+  }
+
+  int n_faces(int v) const { return offsets_[v + 1] - offsets_[v]; }
+  int face(int v, int i) const { return incident_[offsets_[v] + i]; }
+
+  // Fan number of each of v's faces (fan_of[i] for face(v, i)), fans numbered in order of their
+  // lowest face; returns the number of fans. Two faces of v sharing another vertex w share the
+  // edge (v, w).
+  int fans(int v, std::vector<int>& fan_of) {
+    const int k = n_faces(v);
+    spokes_.clear();
+    for (int i = 0; i < k; ++i)
+      for (int w : soup_.triangles[face(v, i)])
+        if (w != v) spokes_.push_back({w, i});
+    std::sort(spokes_.begin(), spokes_.end());
+    DisjointSets sets(k);
+    for (size_t i = 1; i < spokes_.size(); ++i)
+      if (spokes_[i].first == spokes_[i - 1].first) sets.unite(spokes_[i].second, spokes_[i - 1].second);
+    // Roots are the lowest local index of each set, and local order is face order.
+    fan_of.assign(k, -1);
+    int count = 0;
+    for (int i = 0; i < k; ++i) {
+      const int root = sets.find(i);
+      fan_of[i] = root == i ? count++ : fan_of[root];
+    }
+    return count;
+  }
+
+ private:
+  const TriangleSoup& soup_;
+  std::vector<int> offsets_;
+  std::vector<int> incident_;
+  std::vector<std::pair<int, int>> spokes_;  // (other vertex, local face index)
+};
+
+// Winding classes of the faces: links (face, face, 1 when both faces go the same way along
+// their edge) propagate a flip bit breadth-first from each component's lowest face.
+struct Winding {
+  std::vector<int> flip;               // 1 when the face is wound against its component's first face
+  std::vector<int> component;          // the lowest face of the face's component
+  std::vector<int> non_orientable;     // first face of each component where the bits contradict
+};
+
+Winding propagate_winding(int n_faces, const std::vector<std::array<int, 3>>& links) {
+  std::vector<int> offsets(n_faces + 1, 0);
+  for (const auto& link : links) {
+    ++offsets[link[0] + 1];
+    ++offsets[link[1] + 1];
+  }
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  std::vector<std::pair<int, int>> neighbours(offsets.back());  // (face, flip parity)
+  std::vector<int> fill(offsets.begin(), offsets.end() - 1);
+  for (const auto& link : links) {
+    neighbours[fill[link[0]]++] = {link[1], link[2]};
+    neighbours[fill[link[1]]++] = {link[0], link[2]};
+  }
+  Winding winding{std::vector<int>(n_faces, -1), std::vector<int>(n_faces, -1), {}};
+  std::queue<int> queue;
+  for (int seed = 0; seed < n_faces; ++seed) {
+    if (winding.flip[seed] >= 0) continue;
+    winding.flip[seed] = 0;
+    winding.component[seed] = seed;
+    queue.push(seed);
+    bool contradiction = false;
+    while (!queue.empty()) {
+      const int f = queue.front();
+      queue.pop();
+      for (int i = offsets[f]; i < offsets[f + 1]; ++i) {
+        const auto [g, parity] = neighbours[i];
+        if (winding.flip[g] < 0) {
+          winding.flip[g] = winding.flip[f] ^ parity;
+          winding.component[g] = seed;
+          queue.push(g);
+        } else if (winding.flip[g] != (winding.flip[f] ^ parity)) {
+          contradiction = true;
+        }
+      }
+    }
+    if (contradiction) winding.non_orientable.push_back(seed);
+  }
+  return winding;
+}
 
 std::string triangle_text(const std::array<int, 3>& t) {
   std::ostringstream out;
@@ -121,10 +255,7 @@ class SoupValidator {
  private:
   bool finite(int v) const { return finite_[v]; }
   const Eigen::Vector3d& point(int v) const { return soup_.vertices[v]; }
-  bool repeats_index(int f) const {
-    const auto& t = soup_.triangles[f];
-    return t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
-  }
+  bool repeats_index(int f) const { return has_repeated_index(soup_.triangles[f]); }
 
   double face_area(int f) const {
     const auto& t = soup_.triangles[f];
@@ -192,27 +323,7 @@ class SoupValidator {
   // Groups the faces' edge uses by undirected edge: edge count, lengths, boundary edges,
   // non-manifold edges, orientation of two-face edges.
   void analyze_edges() {
-    std::vector<EdgeUse> uses;
-    uses.reserve(3 * static_cast<size_t>(n_faces_));
-    for (int f = 0; f < n_faces_; ++f) {
-      const auto& t = soup_.triangles[f];
-      for (int k = 0; k < 3; ++k) {
-        const int from = t[k];
-        const int to = t[(k + 1) % 3];
-        if (from == to) continue;
-        uses.push_back({std::min(from, to), std::max(from, to), f, from < to});
-      }
-    }
-    std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-      return std::tie(x.a, x.b, x.face, x.forward) < std::tie(y.a, y.b, y.face, y.forward);
-    });
-    // A face that repeats an index can use one undirected edge twice; count it once.
-    uses.erase(std::unique(uses.begin(), uses.end(),
-                           [](const EdgeUse& x, const EdgeUse& y) {
-                             return x.a == y.a && x.b == y.b && x.face == y.face;
-                           }),
-               uses.end());
-
+    const std::vector<EdgeUse> uses = sorted_edge_uses(soup_);
     DisjointSets boundary(n_vertices_);
     double length_sum = 0.0;
     int measured = 0;
@@ -283,32 +394,11 @@ class SoupValidator {
   // of a non-manifold edge are joined through it, so its end points are not reported again
   // unless they are also pinched.
   void check_vertex_fans() {
-    std::vector<int> offsets(n_vertices_ + 1, 0);
-    for (int f = 0; f < n_faces_; ++f) {
-      if (repeats_index(f)) continue;
-      for (int v : soup_.triangles[f]) ++offsets[v + 1];
-    }
-    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-    std::vector<int> incident(offsets.back());
-    std::vector<int> fill(offsets.begin(), offsets.end() - 1);
-    for (int f = 0; f < n_faces_; ++f) {
-      if (repeats_index(f)) continue;
-      for (int v : soup_.triangles[f]) incident[fill[v]++] = f;
-    }
-    std::vector<std::pair<int, int>> spokes;  // (other vertex, local face index)
+    VertexFans fans(soup_);
+    std::vector<int> fan_of;
     for (int v = 0; v < n_vertices_; ++v) {
-      const int k = offsets[v + 1] - offsets[v];
-      if (k < 2) continue;
-      spokes.clear();
-      for (int i = 0; i < k; ++i)
-        for (int w : soup_.triangles[incident[offsets[v] + i]])
-          if (w != v) spokes.push_back({w, i});
-      std::sort(spokes.begin(), spokes.end());
-      DisjointSets fans(k);
-      for (size_t i = 1; i < spokes.size(); ++i)
-        if (spokes[i].first == spokes[i - 1].first) fans.unite(spokes[i].second, spokes[i - 1].second);
-      int groups = 0;
-      for (int i = 0; i < k; ++i) groups += fans.find(i) == i;
+      if (fans.n_faces(v) < 2) continue;
+      const int groups = fans.fans(v, fan_of);
       if (groups > 1) {
         report_.non_manifold_vertices.push_back(v);
         fan_counts_.push_back(groups);
@@ -316,43 +406,10 @@ class SoupValidator {
     }
   }
 
-  // Propagates a flip bit across two-face edges; a contradiction means no consistent
-  // orientation exists for that component.
+  // A contradiction in the winding classes means no consistent orientation exists for that
+  // component.
   void check_orientability() {
-    std::vector<int> offsets(n_faces_ + 1, 0);
-    for (const auto& link : face_links_) {
-      ++offsets[link[0] + 1];
-      ++offsets[link[1] + 1];
-    }
-    std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
-    std::vector<std::pair<int, int>> neighbours(offsets.back());  // (face, flip parity)
-    std::vector<int> fill(offsets.begin(), offsets.end() - 1);
-    for (const auto& link : face_links_) {
-      neighbours[fill[link[0]]++] = {link[1], link[2]};
-      neighbours[fill[link[1]]++] = {link[0], link[2]};
-    }
-    std::vector<int> flip(n_faces_, -1);
-    std::queue<int> queue;
-    for (int seed = 0; seed < n_faces_; ++seed) {
-      if (flip[seed] >= 0) continue;
-      flip[seed] = 0;
-      queue.push(seed);
-      bool contradiction = false;
-      while (!queue.empty()) {
-        const int f = queue.front();
-        queue.pop();
-        for (int i = offsets[f]; i < offsets[f + 1]; ++i) {
-          const auto [g, parity] = neighbours[i];
-          if (flip[g] < 0) {
-            flip[g] = flip[f] ^ parity;
-            queue.push(g);
-          } else if (flip[g] != (flip[f] ^ parity)) {
-            contradiction = true;
-          }
-        }
-      }
-      if (contradiction) non_orientable_seeds_.push_back(seed);
-    }
+    non_orientable_seeds_ = propagate_winding(n_faces_, face_links_).non_orientable;
     report_.orientable = non_orientable_seeds_.empty();
   }
 
@@ -497,8 +554,103 @@ class SoupValidator {
 
 }  // namespace
 
+std::string describe_repairs(const MeshReport& report) {
+  std::ostringstream out;
+  const size_t faces = report.reoriented_faces.size();
+  if (faces > 0) out << faces << (faces == 1 ? " face" : " faces") << " re-oriented to agree with their neighbours";
+  const size_t cap = 10;  // a line, not a list: the report holds them all
+  for (size_t i = 0; i < std::min(report.split_vertices.size(), cap); ++i) {
+    const VertexSplit& split = report.split_vertices[i];
+    out << (out.tellp() > 0 ? "; " : "") << "vertex " << split.vertex << " split into " << split.copies.size() + 1
+        << " (" << (split.copies.size() == 1 ? "copy" : "copies");
+    for (int copy : split.copies) out << " " << copy;
+    out << ")";
+  }
+  if (report.split_vertices.size() > cap) out << "; and " << report.split_vertices.size() - cap << " more split vertices";
+  return out.str();
+}
+
+SoupRepair repair_soup(const TriangleSoup& soup) {
+  const auto n_faces = static_cast<int>(soup.triangles.size());
+  SoupRepair repair;
+  repair.soup = soup;
+  repair.reversed.assign(n_faces, false);
+
+  // Orientation: reverse the smaller winding class of each component.
+  std::vector<std::array<int, 3>> links;
+  const std::vector<EdgeUse> uses = sorted_edge_uses(soup);
+  for (size_t begin = 0; begin < uses.size();) {
+    size_t end = begin + 1;
+    while (end < uses.size() && uses[end].a == uses[begin].a && uses[end].b == uses[begin].b) ++end;
+    if (end - begin == 2)
+      links.push_back({uses[begin].face, uses[begin + 1].face, uses[begin].forward == uses[begin + 1].forward ? 1 : 0});
+    begin = end;
+  }
+  const Winding winding = propagate_winding(n_faces, links);
+  std::vector<int> class_size(2 * static_cast<size_t>(n_faces), 0);  // (component, flip) -> faces
+  for (int f = 0; f < n_faces; ++f) ++class_size[2 * winding.component[f] + winding.flip[f]];
+  for (int f = 0; f < n_faces; ++f) {
+    const int c = winding.component[f];
+    const int reversed_class = class_size[2 * c + 1] > class_size[2 * c] ? 0 : 1;
+    if (winding.flip[f] != reversed_class) continue;
+    repair.reversed[f] = true;
+    repair.reoriented_faces.push_back(f);
+    std::swap(repair.soup.triangles[f][1], repair.soup.triangles[f][2]);
+  }
+
+  // Pinches: the fans are found on the file's triangles, then every further fan's faces take
+  // their copy. Two faces that share a split vertex's edge are in one of its fans, so they get
+  // the same copy and stay joined.
+  VertexFans fans(soup);
+  std::vector<int> fan_of;
+  for (int v = 0; v < static_cast<int>(soup.vertices.size()); ++v) {
+    if (fans.n_faces(v) < 2) continue;
+    const int count = fans.fans(v, fan_of);
+    if (count < 2) continue;
+    VertexSplit split{v, {}};
+    for (int k = 1; k < count; ++k) {
+      split.copies.push_back(static_cast<int>(repair.soup.vertices.size()));
+      repair.soup.vertices.push_back(soup.vertices[v]);
+    }
+    for (int i = 0; i < fans.n_faces(v); ++i) {
+      if (fan_of[i] == 0) continue;
+      for (int& corner : repair.soup.triangles[fans.face(v, i)])
+        if (corner == v) corner = split.copies[fan_of[i] - 1];
+    }
+    repair.split_vertices.push_back(std::move(split));
+  }
+  return repair;
+}
+
 MeshReport validate_soup(const TriangleSoup& soup, const ValidationSettings& settings) {
-  return SoupValidator(soup, settings).run();
+  MeshReport report = SoupValidator(soup, settings).run();
+  const bool defective = !report.inconsistent_edges.empty() || !report.non_manifold_vertices.empty();
+  if (!settings.repair || !defective || !report.orientable || !report.non_manifold_edges.empty()) return report;
+
+  const SoupRepair repair = repair_soup(soup);
+  const MeshReport after = SoupValidator(repair.soup, settings).run();
+  XP_ASSERT_MSG(after.inconsistent_edges.empty() && after.non_manifold_vertices.empty(),
+                soup.source << ": repair left " << after.inconsistent_edges.size() << " inconsistent edges and "
+                            << after.non_manifold_vertices.size() << " pinched vertices");
+  report.reoriented_faces = repair.reoriented_faces;
+  report.split_vertices = repair.split_vertices;
+  report.genus = after.genus;
+  std::vector<bool> blocking_kind(static_cast<size_t>(ProblemKind::PolygonsTriangulated) + 1, false);
+  for (Problem& problem : report.problems) {
+    problem.repaired =
+        problem.kind == ProblemKind::InconsistentOrientation || problem.kind == ProblemKind::NonManifoldVertex;
+    if (!problem.repaired && blocks_use(problem.kind)) blocking_kind[static_cast<size_t>(problem.kind)] = true;
+  }
+  // What the repairs created (a split that disconnects the surface), named on the repaired soup.
+  const std::string prefix = soup.source + ": ";
+  for (const Problem* problem : after.errors()) {
+    if (blocking_kind[static_cast<size_t>(problem->kind)]) continue;
+    std::string text = problem->message;
+    if (text.rfind(prefix, 0) == 0) text.erase(0, prefix.size());
+    report.problems.push_back({problem->kind, prefix + "after repair: " + text});
+  }
+  report.usable = report.errors().empty();
+  return report;
 }
 
 }  // namespace xparam

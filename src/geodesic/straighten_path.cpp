@@ -393,7 +393,8 @@ void inherit_region(const Mesh& mesh, std::vector<bool>& region_mask, VertexHand
 }  // namespace
 
 StraightenedCurve straighten_curve(const Mesh& mesh, const std::vector<bool>& region_mask,
-                                   const std::vector<VertexHandle>& path, const StraightenSettings& settings) {
+                                   const std::vector<VertexHandle>& path,
+                                   const StraightenSettings& settings) {
   return Straightener(mesh, region_mask, path, settings).run();
 }
 
@@ -426,8 +427,9 @@ StraightenResult insert_curve(Mesh& mesh, std::vector<bool>& region_mask, const 
       inherit_region(mesh, region_mask, v, ends, faces_before);
       ++result.vertices_added;
     }
-    XP_ASSERT_MSG(mesh.find_halfedge(chain.back(), v).is_valid(),
-                  "inserted curve vertices " << chain.back().idx() << " and " << v.idx() << " are not adjacent");
+    XP_ASSERT_MSG(mesh.find_halfedge(chain.back(), v).is_valid(), "inserted curve vertices "
+                                                                      << chain.back().idx() << " and "
+                                                                      << v.idx() << " are not adjacent");
     chain.push_back(v);
   }
   result.length = chain_length(mesh, chain);

@@ -36,8 +36,8 @@ struct StraightenSettings {
 /// One point of a straightened curve before insertion: a mesh vertex the curve passes through,
 /// or a point inside a mesh edge it crosses.
 struct CurvePoint {
-  VertexHandle vertex;  ///< valid: the curve passes through this vertex
-  EdgeHandle edge;      ///< otherwise: the edge crossed here
+  VertexHandle vertex;                              ///< valid: the curve passes through this vertex
+  EdgeHandle edge;                                  ///< otherwise: the edge crossed here
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< 3-D position
 };
 
@@ -70,8 +70,8 @@ struct StraightenResult {
   /// bends around them, so it shares them with whatever bounds the region.
   int boundary_contacts = 0;
   std::vector<VertexHandle> contacts;  ///< those vertices, in chain order
-  double input_length = 0.0;  ///< length of the input path (mesh units)
-  double length = 0.0;        ///< length of the returned chain (mesh units)
+  double input_length = 0.0;           ///< length of the input path (mesh units)
+  double length = 0.0;                 ///< length of the returned chain (mesh units)
   StraightenSettings settings;
 };
 

@@ -62,9 +62,9 @@ struct TransferredCurve {
 /// (a failed target, or no ground truth given).
 struct TargetMetrics {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  double e_l2 = kNaN;            ///< global L2 stretch of the map (paper eq. 5)
-  double e_ang = kNaN;           ///< global angle distortion (paper eq. 6)
-  double stretch_max_sv = kNaN;  ///< largest singular value of any face's Jacobian
+  double e_l2 = kNaN;            ///< global L2 stretch of the map (paper eq. 6)
+  double e_ang = kNaN;           ///< global angle distortion (paper eq. 3)
+  double stretch_max_sv = kNaN;  ///< mean over template faces of max(sigma1, 1 / sigma2) of the face's map
   int flipped_faces = -1;        ///< remesh faces whose normal opposes the target's
   double area_ratio = kNaN;      ///< remesh area / target area
   double gt_error = kNaN;        ///< mean distance to the ground-truth correspondence; NaN when none given

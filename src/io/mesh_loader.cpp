@@ -2,7 +2,6 @@
 
 #include "core/errors.h"
 #include "core/mesh_builder.h"
-#include "core/orientation.h"
 #include "core/provenance.h"
 #include "io/mesh_reader.h"
 
@@ -11,8 +10,8 @@
 namespace xparam {
 
 LoadedMesh load_mesh(const std::filesystem::path& path, const ValidationSettings& settings) {
-  const TriangleSoup soup = read_triangle_soup(path);
-  LoadedMesh loaded{path, Mesh(), validate_soup(soup, settings), false};
+  TriangleSoup soup = read_triangle_soup(path);
+  LoadedMesh loaded{path, Mesh(), validate_soup(soup, settings), {}};
   if (!loaded.report.usable) {
     // One line (the batch driver records it per target) with the first problems, each of
     // which names the file and the element.
@@ -23,10 +22,21 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const ValidationSettings
     if (errors.size() > static_cast<size_t>(kProblemsInLoadError)) message += "; ...";
     throw InputError(message);
   }
+  const auto file_vertices = static_cast<int>(soup.vertices.size());
+  FileOrder& order = loaded.file_order;
+  order = FileOrder::identity(static_cast<int>(soup.triangles.size()), file_vertices);
+  if (!loaded.report.reoriented_faces.empty() || !loaded.report.split_vertices.empty()) {
+    SoupRepair repair = repair_soup(soup);
+    order.reversed = std::move(repair.reversed);
+    order.copy_of.resize(repair.soup.vertices.size() - soup.vertices.size());
+    for (const VertexSplit& split : repair.split_vertices)
+      for (int copy : split.copies) order.copy_of[copy - file_vertices] = split.vertex;
+    soup = std::move(repair.soup);
+  }
   loaded.mesh = build_mesh(soup);
   if (signed_volume(loaded.mesh) < 0.0) {
     loaded.mesh = build_mesh(soup, TriangleOrder::Reversed);
-    loaded.orientation_flipped = true;
+    order.reversed.flip();
   }
   init_provenance(loaded.mesh);
   return loaded;

@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "core/provenance.h"
 #include "param/convex_polygon.h"
+#include "param/domain_map.h"
 
 #include <tbb/parallel_for.h>
 
@@ -10,33 +11,19 @@
 #include <optional>
 
 namespace xparam {
-namespace {
-
-// Barycentrics of p in the 2-D triangle (a, b, c).
-Eigen::Vector3d barycentric_2d(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                               const Eigen::Vector2d& c) {
-  const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
-  const double s = ((p.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (p.y() - a.y())) / det;
-  const double t = ((b.x() - a.x()) * (p.y() - a.y()) - (p.x() - a.x()) * (b.y() - a.y())) / det;
-  return {1.0 - s - t, s, t};
-}
-
-}  // namespace
 
 struct CrossMap::Impl {
   const Layout* layout = nullptr;
   std::array<const Mesh*, 2> inputs{};
   std::array<SidePatches, 2> sides;
   std::array<std::vector<PatchParameterizationResult>, 2> params;
+  std::vector<std::optional<DomainMap>> domain_maps;  // #patches: Gamma_st, source polygon -> target polygon
   std::vector<std::optional<PointLocator>> target_locators;  // #patches, over the target patch parameterizations
   std::vector<std::vector<int>> source_refined_faces;  // #source input faces: refined faces inside it
 
   // Source domain point -> target domain point -> target surface.
   MappedPoint map_from_source_domain(int patch, const Eigen::Vector2d& uv_source) const {
-    const std::vector<Eigen::Vector2d>& from = sides[0].patches[patch].polygon;
-    const std::vector<Eigen::Vector2d>& to = sides[1].patches[patch].polygon;
-    const Eigen::Vector3d w = barycentric_2d(uv_source, from[0], from[1], from[2]);
-    const Eigen::Vector2d uv_target = w[0] * to[0] + w[1] * to[1] + w[2] * to[2];
+    const Eigen::Vector2d uv_target = (*domain_maps[patch])(uv_source);
 
     const PointLocation hit = target_locators[patch]->locate(uv_target);
     const DiskPatch& target_patch = sides[1].patches[patch];
@@ -73,10 +60,13 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
     m.params[side] = parameterize_patches(m.sides[side].patches);
   }
 
-  // A locator over each target patch's domain.
+  // Per patch: Gamma_st between its two domains (corner i is the same anchor on both sides,
+  // the start of the patch's i-th layout halfedge) and a locator over the target's domain.
   const int n_patches = static_cast<int>(layout.patches.size());
+  m.domain_maps.resize(n_patches);
   m.target_locators.resize(n_patches);
   tbb::parallel_for(0, n_patches, [&](int p) {
+    m.domain_maps[p].emplace(m.sides[0].patches[p].polygon, m.sides[1].patches[p].polygon);
     m.target_locators[p].emplace(m.params[1][p].uv, m.sides[1].patches[p].triangles);
   });
 

@@ -1,13 +1,18 @@
 #pragma once
 /// \file
 /// The composed bijective map Gamma = Gamma_s . Gamma_st . Gamma_t^-1 (paper eq. 1) of a
-/// consistent layout with triangular patches (ARCHITECTURE steps 7-8).
+/// consistent layout whose patches are triangles or, after patch merging (paper section 5),
+/// quads and other polygons of distinct anchors (ARCHITECTURE steps 7-8).
 ///
-/// Every patch of both sides is parameterized onto its LPBD triangle (mean-value weights,
-/// param/patch_parameterization.h); Gamma_st is the affine map between the two LPBD triangles
-/// of a patch; a point of the template is carried to its patch's source domain, across to the
-/// target domain, located in the target patch's parameterization, and reported on the target's
-/// input mesh through provenance. Boundaries are placed by arc length on both sides, so a point
+/// Every patch of both sides is parameterized onto its LPBD polygon (mean-value weights,
+/// param/patch_parameterization.h; a triangle's LPBD from its three curve lengths, an n-gon's
+/// from eq. 2 with the corners' surface angles, a convex fallback where the LPBD is degenerate
+/// or concave, map/patch_extraction.h); Gamma_st is param/domain_map.h's DomainMap between the
+/// two polygons of a patch (affine for triangles, Wachspress for more corners; a bijection
+/// between convex polygons either way); a point of the template is carried to its patch's
+/// source domain, across to the target domain, located in the target patch's
+/// parameterization, and reported on the target's input mesh through provenance. Boundaries
+/// are placed by arc length on both sides and DomainMap is linear along each side, so a point
 /// on a curve lands on the same point of the target curve from either patch: the map is
 /// continuous, and bijective because every piece is.
 
@@ -40,7 +45,8 @@ class CrossMap {
  public:
   /// Parameterize every patch of both sides (in parallel) and index the target domains.
   /// `inputs[s]` is the input mesh side s was refined from.
-  /// \pre layout consistent with triangular patches and patch ids assigned on both sides
+  /// \pre layout consistent (check_layout, with triangles = false after merging) and patch ids
+  ///   assigned on both sides
   /// \throw ParamError when a patch cannot be parameterized
   CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& inputs);
   ~CrossMap();
@@ -53,12 +59,13 @@ class CrossMap {
   /// Image of a point of the template's input mesh (a curve point, say).
   MappedPoint map_input_point(const SurfacePoint& point) const;
 
-  /// Patches of each side whose LPBD was degenerate and replaced (patch_extraction.h).
+  /// Patches of each side whose LPBD was degenerate or concave and replaced (patch_polygon in
+  /// map/patch_extraction.h).
   std::array<int, 2> fallback_polygons() const;
 
   /// Triangles of each side whose parameterization has non-positive signed area. Zero on both
   /// sides certifies the map bijective (each patch map is then a homeomorphism onto its
-  /// convex LPBD); mean-value weights guarantee it in exact arithmetic, this counts what
+  /// convex polygon); mean-value weights guarantee it in exact arithmetic, this counts what
   /// floating point did to very compressed regions.
   std::array<int, 2> inverted_triangles() const;
 

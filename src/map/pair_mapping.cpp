@@ -76,8 +76,12 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   stage("layout");
   result.layout = build_consistent_layout(source_refined, anchor_vertices(result.anchors[0]), target_refined,
                                           anchor_vertices(result.anchors[1]), settings.layout);
-  const Layout& layout = result.layout.layout;
   result.seconds.layout = watch.lap();
+
+  stage("optimize");
+  result.optimization = optimize_base_domain(result.layout.layout, settings.optimization);
+  const Layout& layout = result.layout.layout;
+  result.seconds.optimize = watch.lap();
 
   stage("parameterize");
   const CrossMap cross(layout, {&source, &target});

@@ -10,6 +10,7 @@
 #include "core/feature_curves.h"
 #include "core/mesh.h"
 #include "core/surface_point.h"
+#include "domain/base_domain_optimization.h"
 #include "layout/consistent_layout.h"
 #include "map/distortion.h"
 #include "map/remesh_quality.h"
@@ -27,6 +28,7 @@ namespace xparam {
 struct PairSettings {
   PlacementSettings placement;         ///< how anchors given as positions are put on the meshes
   ConsistentLayoutSettings layout;     ///< the pre-step (layout/consistent_layout.h)
+  DomainOptimizationSettings optimization;  ///< stretching, swapping, merging (domain/base_domain_optimization.h)
 };
 
 /// Wall-clock seconds of each stage of map_pair (not deterministic, never compared).
@@ -58,7 +60,8 @@ struct PairMapping {
   DistortionResult distortion;       ///< per face and global L2-stretch and angle distortion (eq. 3, 5, 6)
   RemeshQualityResult quality;       ///< flipped faces and area ratio of the remesh on the target
   std::vector<MappedCurve> curves;   ///< the template's feature curves on the target, in input order
-  ConsistentLayoutResult layout;     ///< the layout on both (refined) meshes, for exports and counts
+  ConsistentLayoutResult layout;     ///< the optimized layout on both (refined) meshes, for exports and counts
+  DomainOptimizationResult optimization;  ///< what the base-domain optimization did (swaps, merges, seconds)
   std::array<PlacedAnchors, 2> anchors;  ///< template and target anchors as placed (snap distances, warnings)
   std::array<int, 2> fallback_polygons{};  ///< patches per side whose degenerate LPBD was replaced
   std::array<int, 2> inverted_triangles{}; ///< parameterization triangles per side with non-positive area (0: bijective)

@@ -1,7 +1,12 @@
 #include "map/patch_extraction.h"
 
 #include "core/errors.h"
+#include "domain/patch_merging.h"
+#include "param/convex_polygon.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <string>
 
 namespace xparam {
@@ -13,23 +18,59 @@ double polyline_length(const Mesh& mesh, const std::vector<VertexHandle>& chain)
   return length;
 }
 
-// The patch's polygon: its LPBD when that is a proper triangle, else the chord triangle.
-Lpbd patch_polygon(const Layout& layout, int side, const std::vector<int>& walk, Lpbd& lpbd) {
-  const Mesh& mesh = layout.sides[side].mesh;
-  std::array<double, 3> curve{};
-  std::array<double, 3> chord{};
-  for (int j = 0; j < 3; ++j) {
-    curve[j] = chain_length(layout, side, layout_edge_of(walk[j]));
-    const VertexHandle from = layout.sides[side].anchor_vertices[layout_from(layout, walk[j])];
-    const VertexHandle to = layout.sides[side].anchor_vertices[layout_to(layout, walk[j])];
-    chord[j] = (position(mesh, to) - position(mesh, from)).norm();
+// The LPBD of these sides: by the law of cosines for a triangle, by eq. 2 beyond.
+Lpbd lpbd_of(const std::vector<double>& lengths, const std::vector<double>& surface_angles) {
+  if (lengths.size() == 3) return triangle_lpbd(lengths[0], lengths[1], lengths[2]);
+  return polygon_lpbd(lengths, surface_angles);
+}
+
+bool usable(const Lpbd& lpbd) { return lpbd.valid && is_strictly_convex(lpbd.corners); }
+
+// Corners on a circle of circumference `sum(lengths)`, each at the arc-length fraction of the
+// sides before it.
+std::vector<Eigen::Vector2d> inscribed_polygon(const std::vector<double>& lengths) {
+  double perimeter = 0.0;
+  for (double l : lengths) perimeter += l;
+  const double radius = perimeter / (2.0 * std::numbers::pi);
+  std::vector<Eigen::Vector2d> corners;
+  double before = 0.0;
+  for (double l : lengths) {
+    const double angle = 2.0 * std::numbers::pi * before / perimeter;
+    corners.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+    before += l;
   }
-  lpbd = triangle_lpbd(curve[0], curve[1], curve[2]);
-  if (lpbd.valid) return lpbd;
-  return triangle_lpbd(chord[0], chord[1], chord[2]);
+  return corners;
 }
 
 }  // namespace
+
+PatchPolygon patch_polygon(const std::vector<double>& curve_lengths, const std::vector<double>& surface_angles,
+                           const std::vector<double>& chord_lengths) {
+  XP_ASSERT_MSG(curve_lengths.size() >= 3 && surface_angles.size() == curve_lengths.size() &&
+                    chord_lengths.size() == curve_lengths.size(),
+                curve_lengths.size() << " curves, " << surface_angles.size() << " angles, " << chord_lengths.size()
+                                     << " chords");
+  PatchPolygon polygon;
+  polygon.lpbd = lpbd_of(curve_lengths, surface_angles);
+  if (usable(polygon.lpbd)) {
+    polygon.corners = polygon.lpbd.corners;
+    return polygon;
+  }
+  polygon.fallback = true;
+  // Coincident anchors give a zero chord, which no LPBD accepts: straight to the circle then.
+  const bool chords_positive =
+      std::all_of(chord_lengths.begin(), chord_lengths.end(), [](double l) { return std::isfinite(l) && l > 0.0; });
+  if (chords_positive) {
+    const Lpbd chords = lpbd_of(chord_lengths, surface_angles);
+    if (usable(chords)) {
+      polygon.corners = chords.corners;
+      return polygon;
+    }
+  }
+  polygon.corners = inscribed_polygon(curve_lengths);
+  XP_ASSERT_MSG(is_strictly_convex(polygon.corners), "the inscribed fallback polygon is not strictly convex");
+  return polygon;
+}
 
 double chain_length(const Layout& layout, int side, int e) {
   return polyline_length(layout.sides[side].mesh, layout.sides[side].chains[e]);
@@ -54,7 +95,7 @@ SidePatches extract_patches(const Layout& layout, int side) {
   }
   std::vector<int> local(mesh.n_vertices(), -1);
   for (int p = 0; p < n_patches; ++p) {
-    XP_ASSERT_MSG(layout.patches[p].size() == 3, "patch " << p << " has " << layout.patches[p].size() << " sides");
+    const std::vector<int>& walk = layout.patches[p];
     DiskPatch& patch = result.patches[p];
     patch.name = "side " + std::to_string(side) + " patch " + std::to_string(p);
     std::vector<int>& to_mesh = result.local_to_mesh[p];
@@ -74,14 +115,18 @@ SidePatches extract_patches(const Layout& layout, int side) {
       result.face_corners[f] = corners;
     }
     // Boundary: the chains of the patch's walk, each without its last vertex (the next one's first).
-    for (int h : layout.patches[p]) {
+    std::vector<double> curves, chords;
+    for (int h : walk) {
       patch.corner_positions.push_back(static_cast<int>(patch.boundary_loop.size()));
       const std::vector<VertexHandle> chain = halfedge_chain(layout, side, h);
       for (size_t i = 0; i + 1 < chain.size(); ++i) patch.boundary_loop.push_back(local_id(chain[i]));
+      curves.push_back(polyline_length(mesh, chain));
+      chords.push_back((position(mesh, chain.back()) - position(mesh, chain.front())).norm());
     }
-    const Lpbd polygon = patch_polygon(layout, side, layout.patches[p], result.lpbds[p]);
-    if (!result.lpbds[p].valid) ++result.fallback_polygons;
-    patch.polygon = polygon.corners;
+    PatchPolygon polygon = patch_polygon(curves, corner_surface_angles(layout, side, p), chords);
+    if (polygon.fallback) ++result.fallback_polygons;
+    result.lpbds[p] = std::move(polygon.lpbd);
+    patch.polygon = std::move(polygon.corners);
     for (int v : to_mesh) local[v] = -1;
   }
   return result;

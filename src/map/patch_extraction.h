@@ -19,20 +19,41 @@ struct SidePatches {
   std::vector<std::vector<int>> local_to_mesh;   ///< #patches: local vertex id -> mesh vertex index
   std::vector<std::vector<int>> triangle_faces;  ///< #patches: local triangle -> mesh face index
   std::vector<std::array<int, 3>> face_corners;  ///< #mesh faces: local ids of the face's corners (fv order) in its patch
-  int fallback_polygons = 0;                     ///< patches whose LPBD was degenerate (see extract_patches)
+  int fallback_polygons = 0;                     ///< patches whose LPBD was unusable (see patch_polygon)
 };
+
+/// The convex polygon one patch is parameterized onto.
+struct PatchPolygon {
+  Lpbd lpbd;                             ///< the LPBD of the curve lengths (and surface angles)
+  std::vector<Eigen::Vector2d> corners;  ///< #n corners, strictly convex, counter-clockwise
+  bool fallback = false;                 ///< true when `corners` are not lpbd.corners
+};
+
+/// The parameter polygon of an n-sided patch: the first strictly convex (param/convex_polygon.h)
+/// of (1) its LPBD from the curve lengths (triangle_lpbd for n = 3; polygon_lpbd, paper eq. 2,
+/// with the surface angles for n > 3), (2) the same from the straight 3-D distances between
+/// consecutive anchors, (3) the polygon inscribed in a circle whose corners split the circle in
+/// the proportions of the curve lengths (distinct points on a circle in order always form a
+/// strictly convex polygon, so this never fails). A degenerate or concave LPBD would make the
+/// patch's mean-value map fold; any convex polygon keeps it, and the domain map between
+/// two convex polygons, bijective: (2) and (3) trade distortion for bijectivity.
+/// \param curve_lengths #n boundary-curve lengths (side i: corner i -> corner i+1), > 0
+/// \param surface_angles #n surface angles at the corners, radians (unused for n = 3)
+/// \param chord_lengths #n straight distances between consecutive corners' anchors, >= 0
+/// \pre n >= 3, same sizes; ParamError from the LPBD solvers for non-positive curve lengths
+PatchPolygon patch_polygon(const std::vector<double>& curve_lengths, const std::vector<double>& surface_angles,
+                           const std::vector<double>& chord_lengths);
 
 /// Length of layout edge `e`'s chain on `side`, in 3-D units.
 double chain_length(const Layout& layout, int side, int e);
 
-/// Cut side `side` of a layout with triangular patches into disk patches. The boundary loop of
-/// patch p is the concatenation of the chains of its layout halfedges (patch on their left, so
-/// counter-clockwise), corner j at the start of halfedge j. The polygon is the patch's LPBD
-/// (paper 3.2) from its three curve lengths; when that triangle is degenerate (a curve at least
-/// as long as the two others together) the polygon is the triangle of the straight 3-D
-/// distances between its anchors instead, which is never degenerate for distinct,
-/// non-collinear anchors, and the patch is counted in `fallback_polygons`.
-/// \pre every patch is a triangle and the face property "xparam:patch" is set on `side`
+/// Cut side `side` of a layout into disk patches. The boundary loop of patch p is the
+/// concatenation of the chains of its layout halfedges (patch on their left, so
+/// counter-clockwise), corner j at the start of halfedge j. The polygon comes from
+/// patch_polygon with the chain lengths, the surface angles of domain/patch_merging.h and the
+/// anchor-to-anchor distances; patches that need its fallback are counted in `fallback_polygons`.
+/// \pre layout consistent (triangles, or merged quads and n-gons of distinct anchors) and the
+///   face property "xparam:patch" set on `side`
 SidePatches extract_patches(const Layout& layout, int side);
 
 }  // namespace xparam

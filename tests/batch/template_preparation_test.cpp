@@ -56,7 +56,7 @@ TEST(TemplatePreparation, RecordMirrorsTheFiles) {
   const TemplateRecord& record = prepared.record;
   const ObjFile obj = read_plain_obj(inputs.mesh);
 
-  EXPECT_FALSE(prepared.loaded.orientation_flipped);
+  EXPECT_EQ(prepared.loaded.file_order.reversed_count(), 0);
   ASSERT_EQ(record.vertices.rows(), 6890);
   ASSERT_EQ(static_cast<std::size_t>(record.faces.rows()), obj.faces.size());
   for (std::size_t v = 0; v < obj.vertices.size(); ++v)
@@ -111,7 +111,7 @@ TEST(TemplatePreparation, InwardFacingTemplateKeepsFileCornerOrder) {
 
   const PreparedTemplate prepared =
       prepare_template({dir / "inward.obj", dir / "inward.anchors.json", dir / "inward.curves.json"});
-  ASSERT_TRUE(prepared.loaded.orientation_flipped);
+  ASSERT_EQ(prepared.loaded.file_order.reversed_count(), static_cast<int>(obj.faces.size()));
   const TemplateRecord& record = prepared.record;
   for (std::size_t f = 0; f < obj.faces.size(); ++f) {
     const auto row = static_cast<Eigen::Index>(f);

@@ -120,21 +120,48 @@ TEST(Orientation, SignedVolumeOfTetrahedronAndSphere) {
   EXPECT_GT(sphere, 0.99 * 4.0 / 3.0 * M_PI);
 }
 
-TEST(Orientation, ToFileOrderRecoversThePointOnTheFileTriangle) {
-  const TriangleSoup soup = scrambled_sphere(5, 6);
-  const Mesh flipped = build_mesh(soup, TriangleOrder::Reversed);
+// A file with a few faces wound against their neighbours, repaired and built as the loader
+// does: the file's triangles and points come back through FileOrder.
+TEST(Orientation, FileOrderRecoversTheFileTrianglesAndPoints) {
+  const TriangleSoup sphere = scrambled_sphere(5, 6);
+  TriangleSoup file = sphere;
+  const std::vector<int> flipped{1, 4, 7, 30};
+  for (int f : flipped) std::swap(file.triangles[f][1], file.triangles[f][2]);
+  const SoupRepair repair = repair_soup(file);
+  ASSERT_EQ(repair.reoriented_faces, flipped);
+  const Mesh mesh = build_mesh(repair.soup);
+  const FileOrder order{repair.reversed, static_cast<int>(file.vertices.size()), {}};
+  EXPECT_EQ(order.reversed_count(), 4);
+
   const Eigen::Vector3d mesh_bary(0.2, 0.5, 0.3);
-  for (size_t j = 0; j < soup.triangles.size(); ++j) {
-    const SurfacePoint on_mesh{static_cast<int>(j), mesh_bary};
-    const Eigen::Vector3d file_bary = to_file_order(mesh_bary, true);
-    const auto& t = soup.triangles[j];
+  for (size_t j = 0; j < file.triangles.size(); ++j) {
+    const FaceHandle f = mesh.face_handle(static_cast<int>(j));
+    const auto& t = file.triangles[j];
+    EXPECT_EQ(file_triangle(mesh, order, f), t) << "face " << j;
+    const bool reversed = std::find(flipped.begin(), flipped.end(), static_cast<int>(j)) != flipped.end();
+    EXPECT_EQ(order.is_reversed(static_cast<int>(j)), reversed);
+    const Eigen::Vector3d file_bary = to_file_order(order, static_cast<int>(j), mesh_bary);
+    EXPECT_EQ(file_bary, reversed ? Eigen::Vector3d(0.2, 0.3, 0.5) : mesh_bary);
+    EXPECT_EQ(to_file_order(order, static_cast<int>(j), file_bary), mesh_bary);  // its own inverse
     const Eigen::Vector3d on_file =
-        file_bary[0] * soup.vertices[t[0]] + file_bary[1] * soup.vertices[t[1]] + file_bary[2] * soup.vertices[t[2]];
-    EXPECT_NEAR((position(flipped, on_mesh) - on_file).norm(), 0.0, 1e-15);
+        file_bary[0] * file.vertices[t[0]] + file_bary[1] * file.vertices[t[1]] + file_bary[2] * file.vertices[t[2]];
+    EXPECT_NEAR((position(mesh, SurfacePoint{static_cast<int>(j), mesh_bary}) - on_file).norm(), 0.0, 1e-15);
   }
-  EXPECT_EQ(to_file_order(mesh_bary, false), mesh_bary);
-  EXPECT_EQ(to_file_order(to_file_order(mesh_bary, true), true), mesh_bary);
-  EXPECT_EQ(to_file_order(mesh_bary, true), Eigen::Vector3d(0.2, 0.3, 0.5));
+  // A face index outside the mesh is left alone (the anchor or curve check reports it).
+  EXPECT_FALSE(order.is_reversed(-1));
+  EXPECT_EQ(to_file_order(order, 1000, mesh_bary), mesh_bary);
+}
+
+TEST(Orientation, CopiesOfSplitVerticesMapToTheirFileVertex) {
+  FileOrder order = FileOrder::identity(4, 10);
+  order.copy_of = {7, 3, 7};
+  EXPECT_EQ(order.reversed_count(), 0);
+  EXPECT_EQ(order.file_vertex(0), 0);
+  EXPECT_EQ(order.file_vertex(9), 9);
+  EXPECT_EQ(order.file_vertex(10), 7);
+  EXPECT_EQ(order.file_vertex(11), 3);
+  EXPECT_EQ(order.file_vertex(12), 7);
+  EXPECT_THROW(order.file_vertex(13), InternalError);
 }
 
 }  // namespace

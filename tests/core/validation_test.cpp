@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -155,11 +156,26 @@ TEST(Validation, TwoHolesAreTwoLoopsAndAPinchedBoundaryIsOne) {
   TriangleSoup pinched = torus(8, 6);
   // Quad (i, j) holds triangles 2 * (i * 6 + j) and + 1; quads (2, 2) and (3, 3) share vertex (3, 3).
   for (int q : {3 * 6 + 3, 2 * 6 + 2}) pinched.triangles.erase(pinched.triangles.begin() + 2 * q, pinched.triangles.begin() + 2 * q + 2);
-  r = validate_soup(pinched);
+  ValidationSettings as_is;
+  as_is.repair = false;
+  r = validate_soup(pinched, as_is);
   EXPECT_EQ(r.boundary_loops, 1);
   EXPECT_EQ(r.boundary_edges, 8);
   EXPECT_EQ(r.non_manifold_vertices, std::vector<int>{3 * 6 + 3});
   EXPECT_FALSE(r.genus.has_value());
+  EXPECT_TRUE(r.split_vertices.empty());
+
+  // Repaired, the pinch becomes two vertices, each joining one side of each hole: one loop of
+  // 8 edges, chi = 49 - 142 + 92 = -1, genus (2 + 1 - 1) / 2 = 1. The file's counts stay.
+  r = validate_soup(pinched);
+  ASSERT_EQ(r.split_vertices.size(), 1u);
+  EXPECT_EQ(r.split_vertices[0].vertex, 3 * 6 + 3);
+  EXPECT_EQ(r.split_vertices[0].copies, std::vector<int>{48});
+  EXPECT_EQ(r.euler_characteristic, -2);
+  EXPECT_EQ(r.boundary_loops, 1);
+  ASSERT_TRUE(r.genus.has_value());
+  EXPECT_EQ(*r.genus, 1);
+  EXPECT_FALSE(r.usable);  // still open
 }
 
 TEST(Validation, NonManifoldEdgeIsNamedWithFileIndices) {
@@ -192,6 +208,13 @@ TEST(Validation, TwoTetrahedraTouchingAtAVertexArePinched) {
   EXPECT_FALSE(r.genus.has_value());
   EXPECT_TRUE(has_problem(r, ProblemKind::NonManifoldVertex,
                           "tet.obj: vertex 0 is non-manifold: its faces form 2 separate fans"));
+  // Splitting the pinch (the first tetrahedron keeps vertex 0, the second gets copy 7) leaves
+  // two components: the repair cannot make it usable, and says why.
+  ASSERT_EQ(r.split_vertices.size(), 1u);
+  EXPECT_EQ(r.split_vertices[0].copies, std::vector<int>{7});
+  EXPECT_EQ(r.repaired().size(), 1u);
+  EXPECT_TRUE(has_problem(r, ProblemKind::MultipleComponents,
+                          "tet.obj: after repair: component 2 of 2 has 4 faces, starting at face 4"));
   EXPECT_FALSE(r.usable);
 }
 
@@ -206,6 +229,145 @@ TEST(Validation, FlippedFaceIsInconsistentButOrientable) {
                           "tet.obj: edge (1, 2) is traversed in the same direction by faces 0 and 2 "
                           "(inconsistent orientation)"));
   EXPECT_EQ(*r.genus, 0);
+  // Repaired by default: face 2 is re-oriented and nothing blocks use.
+  EXPECT_EQ(r.reoriented_faces, std::vector<int>{2});
+  EXPECT_TRUE(r.usable);
+  EXPECT_TRUE(r.errors().empty());
+  EXPECT_EQ(r.repaired().size(), 3u);
+  EXPECT_EQ(describe_repairs(r), "1 face re-oriented to agree with their neighbours");
+
+  ValidationSettings as_is;
+  as_is.repair = false;
+  const MeshReport refused = validate_soup(soup, as_is);
+  EXPECT_TRUE(refused.reoriented_faces.empty());
+  EXPECT_TRUE(refused.repaired().empty());
+  EXPECT_EQ(refused.errors().size(), 3u);
+  EXPECT_FALSE(refused.usable);
+}
+
+// A torus with some faces reversed: the repair reverses exactly those back, and the result
+// validates as consistent without repairs.
+TEST(Validation, RepairReorientsExactlyTheFlippedFaces) {
+  const TriangleSoup good = torus(8, 6);  // 96 faces, consistent
+  TriangleSoup soup = good;
+  const std::vector<int> flipped{0, 3, 17, 18, 40, 41, 42, 95};  // some neighbours of each other
+  for (int f : flipped) std::swap(soup.triangles[f][0], soup.triangles[f][2]);  // another way to reverse
+  const MeshReport r = validate_soup(soup);
+  EXPECT_EQ(r.reoriented_faces, flipped);
+  EXPECT_TRUE(r.usable);
+  ASSERT_EQ(*r.genus, 1);
+
+  const SoupRepair repair = repair_soup(soup);
+  EXPECT_EQ(repair.reoriented_faces, flipped);
+  for (int f = 0; f < 96; ++f) {
+    const bool expected = std::find(flipped.begin(), flipped.end(), f) != flipped.end();
+    EXPECT_EQ(repair.reversed[f], expected) << f;
+    // (a, b, c) -> (a, c, b); the untouched faces are as in the file.
+    const auto& t = soup.triangles[f];
+    const std::array<int, 3> want = expected ? std::array<int, 3>{t[0], t[2], t[1]} : t;
+    EXPECT_EQ(repair.soup.triangles[f], want) << f;
+  }
+  ValidationSettings as_is;
+  as_is.repair = false;
+  EXPECT_TRUE(validate_soup(repair.soup, as_is).usable);
+
+  // The majority wins: reversing all but those faces re-orients the same faces.
+  TriangleSoup mostly_reversed = good;
+  for (int f = 0; f < 96; ++f)
+    if (std::find(flipped.begin(), flipped.end(), f) == flipped.end())
+      std::swap(mostly_reversed.triangles[f][1], mostly_reversed.triangles[f][2]);
+  EXPECT_EQ(repair_soup(mostly_reversed).reoriented_faces, flipped);
+}
+
+TEST(Validation, RepairTieKeepsTheLowestFacesWinding) {
+  TriangleSoup soup = tetrahedron();
+  for (int f : {1, 3}) std::swap(soup.triangles[f][1], soup.triangles[f][2]);
+  EXPECT_EQ(repair_soup(soup).reoriented_faces, (std::vector<int>{1, 3}));
+  soup = tetrahedron();
+  for (int f : {0, 3}) std::swap(soup.triangles[f][1], soup.triangles[f][2]);
+  EXPECT_EQ(repair_soup(soup).reoriented_faces, (std::vector<int>{1, 2}));
+}
+
+// Two square pyramids meeting tip to tip at vertex 12 (the centre), their bases joined by a
+// band: a sphere whose north and south poles are glued into one vertex (a horn torus with 4
+// sectors). Outward faces; V 13, E 36, F 24, chi 1.
+TriangleSoup double_pyramid() {
+  TriangleSoup soup;
+  soup.source = "pinched.obj";
+  for (int i = 0; i < 4; ++i) {
+    const double c = std::cos(M_PI / 2 * i);
+    const double s = std::sin(M_PI / 2 * i);
+    soup.vertices.push_back({2 * c, 2 * s, 0});  // 3 i: outer equator
+    soup.vertices.push_back({c, s, 1});          // 3 i + 1: top ring
+    soup.vertices.push_back({c, s, -1});         // 3 i + 2: bottom ring
+  }
+  soup.vertices.push_back({0, 0, 0});  // 12: the tips
+  const auto outer = [](int i) { return 3 * (i % 4); };
+  const auto top = [](int i) { return 3 * (i % 4) + 1; };
+  const auto bottom = [](int i) { return 3 * (i % 4) + 2; };
+  for (int i = 0; i < 4; ++i) {
+    soup.triangles.push_back({top(i), top(i + 1), 12});  // faces 0..3: the upper pyramid
+    soup.triangles.push_back({outer(i), outer(i + 1), top(i + 1)});
+    soup.triangles.push_back({outer(i), top(i + 1), top(i)});
+    soup.triangles.push_back({bottom(i), bottom(i + 1), outer(i + 1)});
+    soup.triangles.push_back({bottom(i), outer(i + 1), outer(i)});
+    soup.triangles.push_back({12, bottom(i + 1), bottom(i)});  // the lower pyramid
+  }
+  return soup;
+}
+
+TEST(Validation, PinchedDoublePyramidSplitsIntoASphere) {
+  const TriangleSoup soup = double_pyramid();
+  const MeshReport r = validate_soup(soup);
+  EXPECT_EQ(r.vertices, 13);
+  EXPECT_EQ(r.edges, 36);
+  EXPECT_EQ(r.euler_characteristic, 1);
+  EXPECT_EQ(r.components, 1);
+  EXPECT_EQ(r.non_manifold_vertices, std::vector<int>{12});
+  ASSERT_EQ(r.split_vertices.size(), 1u);
+  EXPECT_EQ(r.split_vertices[0].vertex, 12);
+  EXPECT_EQ(r.split_vertices[0].copies, std::vector<int>{13});
+  ASSERT_TRUE(r.genus.has_value());
+  EXPECT_EQ(*r.genus, 0);
+  EXPECT_TRUE(r.reoriented_faces.empty());
+  EXPECT_TRUE(r.usable);
+  EXPECT_EQ(describe_repairs(r), "vertex 12 split into 2 (copy 13)");
+
+  // The upper pyramid holds face 0 and keeps vertex 12; the lower one takes copy 13.
+  const SoupRepair repair = repair_soup(soup);
+  ASSERT_EQ(repair.soup.vertices.size(), 14u);
+  EXPECT_EQ(repair.soup.vertices[13], soup.vertices[12]);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(repair.soup.triangles[6 * i][2], 12);
+    EXPECT_EQ(repair.soup.triangles[6 * i + 5][0], 13);
+  }
+  for (int f = 0; f < 24; ++f) {
+    if (f % 6 == 5) continue;
+    EXPECT_EQ(repair.soup.triangles[f], soup.triangles[f]) << f;
+  }
+  ValidationSettings as_is;
+  as_is.repair = false;
+  const MeshReport sphere = validate_soup(repair.soup, as_is);
+  EXPECT_TRUE(sphere.usable);
+  EXPECT_EQ(sphere.components, 1);
+  EXPECT_EQ(sphere.euler_characteristic, 2);
+  EXPECT_EQ(*sphere.genus, 0);
+  EXPECT_EQ(sphere.duplicate_vertices, (std::vector<std::array<int, 2>>{{12, 13}}));
+
+  // Without the repair it is refused.
+  EXPECT_FALSE(validate_soup(soup, as_is).usable);
+}
+
+TEST(Validation, NonManifoldEdgesAreNotRepaired) {
+  // A fin on a tetrahedron with one face flipped: the edge stays refused, nothing is repaired.
+  TriangleSoup soup = tetrahedron();
+  std::swap(soup.triangles[2][1], soup.triangles[2][2]);
+  soup.vertices.push_back({1, 1, 1});
+  soup.triangles.push_back({0, 1, 4});
+  const MeshReport r = validate_soup(soup);
+  EXPECT_FALSE(r.non_manifold_edges.empty());
+  EXPECT_TRUE(r.reoriented_faces.empty());
+  EXPECT_TRUE(r.repaired().empty());
   EXPECT_FALSE(r.usable);
 }
 

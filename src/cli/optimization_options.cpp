@@ -1,0 +1,25 @@
+#include "cli/optimization_options.h"
+
+#include <string>
+#include <vector>
+
+namespace xparam::cli {
+
+void add_optimization_options(CLI::App& command, DomainOptimizationSettings& settings) {
+  std::vector<std::string> names;
+  for (SwapMetric metric : {SwapMetric::none, SwapMetric::area, SwapMetric::dad, SwapMetric::dl2, SwapMetric::sdl,
+                            SwapMetric::gar, SwapMetric::balanced})
+    names.emplace_back(to_string(metric));
+  command
+      .add_option_function<std::string>(
+          "--optimize", [&settings](const std::string& name) { settings.metric = parse_swap_metric(name); },
+          "Metric of the boundary swapping (paper section 4): none, area, dad, dl2, sdl, gar, or balanced "
+          "(section 4.3; the default)")
+      ->check(CLI::IsMember(names));
+  command.add_flag("--merge,!--no-merge", settings.merge,
+                   "Merge triangle pairs into quads where it lowers the domain distortion (paper section 5; default on)");
+  command.add_flag("!--no-stretch", settings.stretch,
+                   "Keep the initial layout curves instead of straightening them into geodesics first");
+}
+
+}  // namespace xparam::cli

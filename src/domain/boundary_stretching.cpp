@@ -1,0 +1,149 @@
+#include "domain/boundary_stretching.h"
+
+#include "core/errors.h"
+#include "core/provenance.h"
+#include "geodesic/locally_shortest.h"
+#include "layout/chain_edit.h"
+#include "layout/vertex_labels.h"
+
+#include <string>
+
+namespace xparam {
+namespace {
+
+// The faces of one side's two-patch region: `region` is the whole union of the two patches
+// (what gets re-labelled), `free` the part the funnel may use (region minus the thin faces
+// around the avoided vertices). Both grow with the mesh.
+struct RegionMasks {
+  std::vector<bool> region;
+  std::vector<bool> free;
+};
+
+// Keeps the curve off blocked vertex w: splits every region-interior edge at w at `clearance`
+// of its length from w (those are exactly the edges with both faces free; the region's
+// boundary edges at w belong to other chains and are never split), then takes the faces
+// around w out of the free part. Returns the new vertices.
+std::vector<VertexHandle> clear_around(Mesh& mesh, RegionMasks& masks, VertexHandle w, double clearance) {
+  std::vector<EdgeHandle> to_split;
+  for (const HalfedgeHandle h : mesh.voh_range(w)) {
+    const FaceHandle f = mesh.face_handle(h);
+    const FaceHandle g = mesh.opposite_face_handle(h);
+    if (f.is_valid() && g.is_valid() && masks.free[f.idx()] && masks.free[g.idx()]) {
+      to_split.push_back(mesh.edge_handle(h));
+    }
+  }
+  std::vector<VertexHandle> made;
+  const Eigen::Vector3d at = position(mesh, w);
+  for (const EdgeHandle e : to_split) {
+    // Splitting one edge at w keeps the other collected edges (same handle, same ends).
+    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
+    const VertexHandle x =
+        mesh.from_vertex_handle(h) == w ? mesh.to_vertex_handle(h) : mesh.from_vertex_handle(h);
+    made.push_back(split_edge_keeping_provenance(mesh, e, at + clearance * (position(mesh, x) - at)));
+    // Both faces beside the edge were free, so all four pieces are.
+    masks.region.resize(mesh.n_faces(), true);
+    masks.free.resize(mesh.n_faces(), true);
+  }
+  for (const FaceHandle f : mesh.vf_range(w)) masks.free[f.idx()] = false;
+  return made;
+}
+
+// Stretches the chain of edge e on one side; fills that side's entries of `out`.
+void stretch_side(Layout& layout, int side, int e, const std::array<int, 2>& patches,
+                  const StretchSettings& settings, CurveStretch& out) {
+  LayoutSide& s = layout.sides[side];
+  Mesh& mesh = s.mesh;
+  const int vertices_before = static_cast<int>(mesh.n_vertices());
+  const std::vector<VertexHandle> chain = s.chains[e];
+  // Blocked vertices: anchors and the interior of the other chains (this chain's own interior
+  // lies inside the region and is never a contact).
+  const VertexLabels labels = label_vertices(layout, side);
+  const auto blocked = [&](VertexHandle v) {
+    return v.idx() < vertices_before && labels.blocked(v) && labels.edge[v.idx()] != e;
+  };
+
+  RegionMasks masks;
+  masks.region = patch_mask(mesh, patches);
+  masks.free = masks.region;
+  StraightenedCurve curve;
+  try {
+    for (int round = 0;; ++round) {
+      curve = straighten_curve(mesh, masks.free, chain, settings.straighten);
+      std::vector<VertexHandle> contacts;
+      for (const VertexHandle v : curve.contacts) {
+        if (blocked(v)) contacts.push_back(v);
+      }
+      if (contacts.empty()) break;
+      if (round + 1 >= settings.max_clearance_rounds) {
+        throw LayoutError("stretch_edge: side " + std::to_string(side) + ", layout edge " +
+                          std::to_string(e) + ": the curve still touches " + std::to_string(contacts.size()) +
+                          " blocked vertices after " + std::to_string(round + 1) + " clearance rounds");
+      }
+      for (const VertexHandle w : contacts) {
+        const std::vector<VertexHandle> made = clear_around(mesh, masks, w, settings.contact_clearance);
+        out.avoided[side].push_back(w);
+        out.clearance_vertices[side].insert(out.clearance_vertices[side].end(), made.begin(), made.end());
+      }
+    }
+    // The thin faces at avoided vertices stay in the region: remember them before insertion
+    // grows the free mask (insertion only splits free faces, so they keep their handles).
+    std::vector<FaceHandle> thin;
+    for (std::size_t f = 0; f < masks.region.size(); ++f) {
+      if (masks.region[f] && !masks.free[f]) thin.emplace_back(static_cast<int>(f));
+    }
+    const StraightenResult inserted = insert_curve(mesh, masks.free, curve);
+    std::vector<bool> region = masks.free;
+    for (const FaceHandle f : thin) region[f.idx()] = true;
+    relabel_region(mesh, region, inserted.chain, patches);
+    s.chains[e] = inserted.chain;
+    out.length[side] = inserted.length;
+    out.converged[side] = inserted.converged;
+  } catch (const LayoutError&) {
+    // Insertion refuses before touching the mesh; clearance splits made so far stay as free
+    // vertices, and the faces they cut get their patch back from the unchanged chain.
+    relabel_region(mesh, masks.region, chain, patches);
+    out.kept[side] = true;
+    out.length[side] = chain_length(mesh, chain);
+  }
+
+  out.vertices_added[side] = static_cast<int>(mesh.n_vertices()) - vertices_before;
+  out.contacts_avoided[side] = static_cast<int>(out.avoided[side].size());
+  out.input_length[side] = chain_length(mesh, chain);
+}
+
+}  // namespace
+
+CurveStretch stretch_edge(Layout& layout, int e, const StretchSettings& settings) {
+  if (!(settings.contact_clearance > 0.0 && settings.contact_clearance < 0.5) ||
+      settings.max_clearance_rounds < 1) {
+    throw InputError(
+        "stretch_edge: settings out of range (contact_clearance in (0, 0.5), max_clearance_rounds >= 1)");
+  }
+  if (e < 0 || e >= static_cast<int>(layout.edges.size())) {
+    throw LayoutError("stretch_edge: layout edge " + std::to_string(e) + " does not exist (" +
+                      std::to_string(layout.edges.size()) + " edges)");
+  }
+  const std::array<int, 2> patches = patches_of_edge(layout, e);
+  if (patches[0] == patches[1]) {
+    throw LayoutError("stretch_edge: layout edge " + std::to_string(e) + " has patch " +
+                      std::to_string(patches[0]) + " on both sides");
+  }
+  CurveStretch result;
+  result.edge = e;
+  for (int side = 0; side < 2; ++side) stretch_side(layout, side, e, patches, settings, result);
+  return result;
+}
+
+StretchResult stretch_layout(Layout& layout, const StretchSettings& settings) {
+  StretchResult result;
+  for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
+    result.curves.push_back(stretch_edge(layout, e, settings));
+    for (int side = 0; side < 2; ++side) {
+      result.vertices_added[side] += result.curves.back().vertices_added[side];
+      result.kept[side] += result.curves.back().kept[side] ? 1 : 0;
+    }
+  }
+  return result;
+}
+
+}  // namespace xparam

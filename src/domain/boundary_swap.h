@@ -1,0 +1,63 @@
+#pragma once
+/// \file
+/// The boundary swapping operator (paper section 4, Fig. 6): layout edge (a, b), shared by the
+/// triangular patches (a, b, l) on its left and (b, a, r) on its right, is replaced on both
+/// meshes by a curve (l, r) traced inside the quad a-r-b-l and stretched (boundary_stretching.h),
+/// giving the patches (a, r, l) and (b, l, r).
+
+#include "domain/boundary_stretching.h"
+#include "layout/layout.h"
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace xparam {
+
+/// The quad around a layout edge: anchors a, b of the edge (halfedge 2e runs a -> b), l the
+/// third anchor of the patch on the left of a -> b, r that of the patch on its right. The
+/// quad's counter-clockwise corners are a, r, b, l.
+struct SwapQuad {
+  int edge = -1;
+  int a = -1, b = -1, l = -1, r = -1;
+  int left_patch = -1;   ///< the patch (a, b, l)
+  int right_patch = -1;  ///< the patch (b, a, r)
+};
+
+/// The quad of edge e; nullopt when one of its two patches is not a triangle.
+std::optional<SwapQuad> swap_quad(const Layout& layout, int e);
+
+/// Per side 0/1: what the layout would measure after swapping, without changing it.
+struct SwapTrial {
+  SwapQuad quad;
+  bool possible = false;  ///< false: refused, see `refusal`
+  std::string refusal;  ///< why not (l and r already joined, l == r, an anchor left with < 3 edges, no path)
+  std::array<double, 2> length{};  ///< length of the stretched curve l -> r per side, 3-D units
+  /// Surface area per side of the new patches: [side][0] = (l, r, b) left of l -> r,
+  /// [side][1] = (r, l, a) on its right.
+  std::array<std::array<double, 2>, 2> area{};
+};
+
+/// Measure the swap of edge e as apply_swap would do it (same tracing and stretching, so the
+/// lengths and areas are those apply_swap produces), leaving `layout` unchanged.
+/// Cost: the combinatorial refusals are checked on `layout` itself; a possible swap is then
+/// carried out on a copy of the whole layout (both meshes) and measured, so that the numbers
+/// are exactly apply_swap's. The copy dominates (about 11 ms per call on the stretched human
+/// pair, 2 x 11.5k vertices); a copy of just the quad's faces would be the next step.
+/// \pre layout consistent with patch ids set
+/// \throw LayoutError when e is not an edge of the layout
+SwapTrial try_swap(const Layout& layout, int e, const StretchSettings& settings = {});
+
+/// Swap edge e on both sides. Afterwards edge e joins l and r with halfedge 2e running l -> r;
+/// `left_patch` is the patch (l, r, b) on its left, `right_patch` the patch (r, l, a); the
+/// old chain's interior vertices stay in the mesh as free vertices; every other edge and patch
+/// keeps its index. The layout stays consistent (check_layout passes).
+/// Tracing: the old chain's interior becomes free, the edges inside the quad with two blocked
+/// ends are split at their midpoints (layout/refinement.h make_room, restricted to the quad so
+/// other patches keep their faces), then trace_path joins l's corner wedge to r's inside the
+/// quad; the patch ids of the quad's faces are re-flooded and the new edge is stretched.
+/// \throw LayoutError when try_swap would refuse, with its reason; the work is done on a copy
+///        that replaces `layout` only on success, so any failure leaves `layout` unchanged
+void apply_swap(Layout& layout, int e, const StretchSettings& settings = {});
+
+}  // namespace xparam
