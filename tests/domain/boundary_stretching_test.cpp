@@ -12,32 +12,21 @@
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <fstream>
 #include <iostream>
 #include <set>
 
 namespace xparam {
 namespace {
 
-// The vertex ids of an anchors file whose anchors are given as {"name", "vertex"}.
-std::vector<int> anchor_vertex_ids(const std::string& file) {
-  std::ifstream in(test::data_path(file));
-  const nlohmann::json json = nlohmann::json::parse(in);
-  std::vector<int> ids;
-  for (const auto& anchor : json.at("anchors")) ids.push_back(anchor.at("vertex").get<int>());
-  return ids;
-}
-
 // Layouts built once per test program (the construction dominates the run time).
 const Layout& human_layout() {
   static const Layout layout = [] {
     const Mesh man = test::load(test::data_path("human_man.obj"));
     const Mesh woman = test::load(test::data_path("human_woman.obj"));
-    const std::vector<int> ids = anchor_vertex_ids("human_man.anchors.json");
-    EXPECT_EQ(ids, anchor_vertex_ids("human_woman.anchors.json"));
+    const std::vector<int> ids = test::anchor_vertex_ids("human_man.anchors.json");
+    EXPECT_EQ(ids, test::anchor_vertex_ids("human_woman.anchors.json"));
     return build_consistent_layout(man, test::handles(ids), woman, test::handles(ids)).layout;
   }();
   return layout;

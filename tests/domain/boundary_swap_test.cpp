@@ -11,32 +11,22 @@
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <Eigen/Geometry>
 
 #include <chrono>
-#include <fstream>
 #include <iostream>
 #include <random>
 
 namespace xparam {
 namespace {
 
-std::vector<int> anchor_vertex_ids(const std::string& file) {
-  std::ifstream in(test::data_path(file));
-  const nlohmann::json json = nlohmann::json::parse(in);
-  std::vector<int> ids;
-  for (const auto& anchor : json.at("anchors")) ids.push_back(anchor.at("vertex").get<int>());
-  return ids;
-}
-
 // Stretched layouts, built once per test program.
 const Layout& human_layout() {
   static const Layout layout = [] {
     const Mesh man = test::load(test::data_path("human_man.obj"));
     const Mesh woman = test::load(test::data_path("human_woman.obj"));
-    const std::vector<int> ids = anchor_vertex_ids("human_man.anchors.json");
+    const std::vector<int> ids = test::anchor_vertex_ids("human_man.anchors.json");
     Layout built = build_consistent_layout(man, test::handles(ids), woman, test::handles(ids)).layout;
     stretch_layout(built);
     return built;

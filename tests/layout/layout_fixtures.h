@@ -6,6 +6,7 @@
 #include "io/mesh_loader.h"
 #include "layout/consistent_layout.h"
 #include "layout/layout_check.h"
+#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -83,6 +84,15 @@ inline std::vector<int> landmark_ids(const std::filesystem::path& path) {
   const nlohmann::json json = nlohmann::json::parse(in);
   std::vector<int> ids;
   for (const auto& [name, value] : json.items()) ids.push_back(value.get<int>());
+  return ids;
+}
+
+/// The vertex ids of an xparam anchors file whose anchors are {"name", "vertex"} (tests/data), in file order.
+inline std::vector<int> anchor_vertex_ids(const std::string& file) {
+  std::ifstream in(data_path(file));
+  const nlohmann::json json = nlohmann::json::parse(in);
+  std::vector<int> ids;
+  for (const auto& anchor : json.at("anchors")) ids.push_back(anchor.at("vertex").get<int>());
   return ids;
 }
 
