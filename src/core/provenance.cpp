@@ -42,7 +42,8 @@ VertexHandle split_face_keeping_provenance(Mesh& mesh, FaceHandle f, const Eigen
   return v;
 }
 
-VertexHandle split_edge_keeping_provenance(Mesh& mesh, EdgeHandle e, const Eigen::Vector3d& point) {
+VertexHandle split_edge_keeping_provenance(Mesh& mesh, EdgeHandle e, const Eigen::Vector3d& point,
+                                           SplitFaceHalves* halves) {
   const auto handle = input_face_handle(mesh);
   const int faces_before = static_cast<int>(mesh.n_faces());
   const HalfedgeHandle h0 = mesh.halfedge_handle(e, 0);
@@ -59,11 +60,13 @@ VertexHandle split_edge_keeping_provenance(Mesh& mesh, EdgeHandle e, const Eigen
     if (old_half.idx() >= faces_before) std::swap(old_half, new_half);
     XP_ASSERT(old_half.idx() < faces_before && new_half.idx() >= faces_before);
     mesh.property(handle, new_half) = mesh.property(handle, old_half);
+    if (halves) halves->emplace_back(old_half, new_half);
   }
   return v;
 }
 
-SurfacePoint to_input_point(const Mesh& refined, const Mesh& input, FaceHandle f, const Eigen::Vector3d& point) {
+SurfacePoint to_input_point(const Mesh& refined, const Mesh& input, FaceHandle f,
+                            const Eigen::Vector3d& point) {
   SurfacePoint result;
   result.face = input_face(refined, f);
   Eigen::Vector3d corners[3];

@@ -375,21 +375,6 @@ class Straightener {
   StraightenedCurve curve_;
 };
 
-// The faces an edge split at v created take the region flag of the face they were cut from
-// (the face across the new spoke; same rule as split_edge_keeping_provenance).
-void inherit_region(const Mesh& mesh, std::vector<bool>& region_mask, VertexHandle v,
-                    const VertexHandle (&ends)[2], int faces_before) {
-  region_mask.resize(mesh.n_faces(), false);
-  for (VertexHandle end : ends) {
-    const HalfedgeHandle h = mesh.find_halfedge(v, end);
-    if (mesh.is_boundary(h)) continue;
-    FaceHandle old_half = mesh.face_handle(h);
-    FaceHandle new_half = mesh.opposite_face_handle(mesh.prev_halfedge_handle(h));
-    if (old_half.idx() >= faces_before) std::swap(old_half, new_half);
-    region_mask[new_half.idx()] = region_mask[old_half.idx()];
-  }
-}
-
 }  // namespace
 
 StraightenedCurve straighten_curve(const Mesh& mesh, const std::vector<bool>& region_mask,
@@ -420,11 +405,12 @@ StraightenResult insert_curve(Mesh& mesh, std::vector<bool>& region_mask, const 
   for (std::size_t k = 1; k < curve.points.size(); ++k) {
     VertexHandle v = curve.points[k].vertex;
     if (!v.is_valid()) {
-      const HalfedgeHandle h = mesh.halfedge_handle(curve.points[k].edge, 0);
-      const VertexHandle ends[2] = {mesh.from_vertex_handle(h), mesh.to_vertex_handle(h)};
-      const int faces_before = static_cast<int>(mesh.n_faces());
-      v = split_edge_keeping_provenance(mesh, curve.points[k].edge, curve.points[k].point);
-      inherit_region(mesh, region_mask, v, ends, faces_before);
+      // The faces the split creates take the region flag of the face they were cut from.
+      SplitFaceHalves halves;
+      v = split_edge_keeping_provenance(mesh, curve.points[k].edge, curve.points[k].point, &halves);
+      region_mask.resize(mesh.n_faces(), false);
+      for (const auto& [old_half, new_half] : halves)
+        region_mask[new_half.idx()] = region_mask[old_half.idx()];
       ++result.vertices_added;
     }
     XP_ASSERT_MSG(mesh.find_halfedge(chain.back(), v).is_valid(), "inserted curve vertices "
