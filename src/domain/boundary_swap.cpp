@@ -191,7 +191,12 @@ SwapTrial try_swap(const Layout& layout, int e, const StretchSettings& settings)
   SwapTrial trial = check_swap(layout, e);
   if (!trial.refusal.empty()) return trial;
   Layout work = layout;
-  return perform_swap(work, trial.quad, settings);
+  trial = perform_swap(work, trial.quad, settings);
+  if (trial.possible) {
+    trial.after = std::move(work);
+    trial.after_patches = {trial.quad.left_patch, trial.quad.right_patch};
+  }
+  return trial;
 }
 
 void apply_swap(Layout& layout, int e, const StretchSettings& settings) {

@@ -36,6 +36,11 @@ struct SwapTrial {
   /// Surface area per side of the new patches: [side][0] = (l, r, b) left of l -> r,
   /// [side][1] = (r, l, a) on its right.
   std::array<std::array<double, 2>, 2> area{};
+  /// A possible swap's result, for measures that need the meshes (the dense metrics AD and L2):
+  /// a layout holding at least the quad after the swap, and the indices in it of the new
+  /// patches [0] = (l, r, b) and [1] = (r, l, a). Only these two patches are meaningful.
+  Layout after;
+  std::array<int, 2> after_patches = {-1, -1};
 };
 
 /// Measure the swap of edge e as apply_swap would do it (same tracing and stretching, so the
