@@ -3,6 +3,8 @@
 #include "core/closest_point.h"
 #include "core/errors.h"
 #include "core/provenance.h"
+#include "support/expect_error.h"
+#include "support/small_meshes.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
@@ -15,35 +17,10 @@
 namespace xparam {
 namespace {
 
-template <typename F>
-std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return {};
-}
-
 Mesh load(const std::string& name) {
   Mesh mesh;
   OpenMesh::IO::Options options;
   EXPECT_TRUE(OpenMesh::IO::read_mesh(mesh, test::data_path(name).string(), options)) << name;
-  return mesh;
-}
-
-// The unit tetrahedron; face 0 = (a, c, b) lies in z = 0, face 1 = (a, b, d) in y = 0.
-Mesh tetrahedron() {
-  Mesh mesh;
-  const VertexHandle a = mesh.add_vertex({0, 0, 0});
-  const VertexHandle b = mesh.add_vertex({1, 0, 0});
-  const VertexHandle c = mesh.add_vertex({0, 1, 0});
-  const VertexHandle d = mesh.add_vertex({0, 0, 1});
-  mesh.add_face(a, c, b);
-  mesh.add_face(a, b, d);
-  mesh.add_face(b, c, d);
-  mesh.add_face(c, a, d);
   return mesh;
 }
 
@@ -141,7 +118,7 @@ TEST(ClosestPoint, TreeEqualsBruteForceOnRealMeshes) {
 // Placement by hand on the tetrahedron.
 
 TEST(AnchorPlacement, VertexIndexIsThatVertex) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh mesh = with_provenance(input);
   const PlacedAnchors placed = place_anchors(mesh, input, one_anchor(AnchorVertex{3}));
   ASSERT_EQ(placed.anchors.size(), 1u);
@@ -155,7 +132,7 @@ TEST(AnchorPlacement, VertexIndexIsThatVertex) {
 }
 
 TEST(AnchorPlacement, PositionOnAnEdgeSplitsTheEdge) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh mesh = with_provenance(input);
   // 0.3 above edge (a, b) = the x axis, on the outside of both faces beside it (y < 0, z < 0).
   const Eigen::Vector3d on_edge(0.25, 0.0, 0.0);
@@ -177,7 +154,7 @@ TEST(AnchorPlacement, PositionOnAnEdgeSplitsTheEdge) {
 }
 
 TEST(AnchorPlacement, PositionInsideAFaceSplitsTheFace) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh mesh = with_provenance(input);
   const Eigen::Vector3d inside(0.2, 0.3, 0.0);  // face 0, z = 0
   const PlacedAnchors placed =
@@ -195,7 +172,7 @@ TEST(AnchorPlacement, PositionInsideAFaceSplitsTheFace) {
 }
 
 TEST(AnchorPlacement, PositionWithinToleranceOfAVertexIsThatVertex) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh mesh = with_provenance(input);
   const double diagonal = std::sqrt(3.0);
   const PlacedAnchors placed =
@@ -210,7 +187,7 @@ TEST(AnchorPlacement, PositionWithinToleranceOfAVertexIsThatVertex) {
 }
 
 TEST(AnchorPlacement, FaceAndBarycentricsInsertExactly) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh mesh = with_provenance(input);
   // Face 1 = (a, b, d): (0.2, 0.3, 0.5) is (0.3, 0, 0.5); (0, 0.5, 0.5) is the midpoint of
   // edge (b, d); (0, 0, 1) is d itself.
@@ -239,7 +216,7 @@ TEST(AnchorPlacement, FaceAndBarycentricsInsertExactly) {
 }
 
 TEST(AnchorPlacement, LaterAnchorsFindTheirPieceOfAnAlreadySplitFace) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh mesh = with_provenance(input);
   // Three points in face 0 (z = 0), then one on the edge between the first two splits' pieces.
   const std::vector<Eigen::Vector3d> points = {{0.2, 0.2, 0}, {0.1, 0.6, 0}, {0.6, 0.1, 0}, {0.15, 0.4, 0}};
@@ -260,12 +237,12 @@ TEST(AnchorPlacement, LaterAnchorsFindTheirPieceOfAnAlreadySplitFace) {
 }
 
 TEST(AnchorPlacement, TwoAnchorsOnOneVertexNameBothAndLeaveTheMeshAlone) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh mesh = with_provenance(input);
   const AnchorSet set{"s.pp",
                       {{"first", AnchorPosition{{0.2, 0.3, 0.0}}, "s.pp", 4},
                        {"second", AnchorPosition{{0.2, 0.3, 1e-9}}, "s.pp", 5}}};
-  const std::string message = input_error_of([&] { place_anchors(mesh, input, set); });
+  const std::string message = test::error_message_of([&] { place_anchors(mesh, input, set); });
   EXPECT_NE(
       message.find("s.pp:5: anchor \"second\": lands on the same vertex (4) as anchor \"first\" (s.pp:4)"),
       std::string::npos)
@@ -275,23 +252,23 @@ TEST(AnchorPlacement, TwoAnchorsOnOneVertexNameBothAndLeaveTheMeshAlone) {
 }
 
 TEST(AnchorPlacement, OutOfRangeAndInvalidAnchorsAreInputErrors) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh mesh = with_provenance(input);
-  EXPECT_EQ(input_error_of([&] { place_anchors(mesh, input, one_anchor(AnchorVertex{4})); }),
+  EXPECT_EQ(test::error_message_of([&] { place_anchors(mesh, input, one_anchor(AnchorVertex{4})); }),
             "t.json:3: anchor \"A\": vertex index 4 out of range (the mesh has 4 vertices)");
-  EXPECT_EQ(input_error_of([&] {
+  EXPECT_EQ(test::error_message_of([&] {
               place_anchors(mesh, input, one_anchor(SurfacePoint{4, {1, 0, 0}}));
             }),
             "t.json:3: anchor \"A\": face 4 out of range (the mesh has 4 faces)");
-  EXPECT_NE(input_error_of([&] {
+  EXPECT_NE(test::error_message_of([&] {
               place_anchors(mesh, input, one_anchor(SurfacePoint{0, {0.5, 0.5, 0.5}}));
             }).find("barycentric coordinates sum to 1.5"),
             std::string::npos);
-  EXPECT_NE(input_error_of([&] {
+  EXPECT_NE(test::error_message_of([&] {
               place_anchors(mesh, input, one_anchor(SurfacePoint{0, {-0.5, 1.0, 0.5}}));
             }).find("negative"),
             std::string::npos);
-  EXPECT_NE(input_error_of([&] {
+  EXPECT_NE(test::error_message_of([&] {
               place_anchors(mesh, input, one_anchor(AnchorVertex{-1}));
             }).find("negative vertex index"),
             std::string::npos);
@@ -299,14 +276,15 @@ TEST(AnchorPlacement, OutOfRangeAndInvalidAnchorsAreInputErrors) {
 }
 
 TEST(AnchorPlacement, VertexIndicesReferToTheInputEvenAfterRefinement) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh mesh = with_provenance(input);
   split_face_keeping_provenance(mesh, mesh.face_handle(0), {0.2, 0.3, 0.0});
   ASSERT_EQ(mesh.n_vertices(), 5u);
   // Vertex 4 exists in the refined mesh but not in the input.
-  EXPECT_NE(
-      input_error_of([&] { place_anchors(mesh, input, one_anchor(AnchorVertex{4})); }).find("out of range"),
-      std::string::npos);
+  EXPECT_NE(test::error_message_of([&] {
+              place_anchors(mesh, input, one_anchor(AnchorVertex{4}));
+            }).find("out of range"),
+            std::string::npos);
 }
 
 // ----------------------------------------------------------------------------------------

@@ -1,6 +1,8 @@
 #include "core/anchors.h"
 
 #include "core/errors.h"
+#include "support/expect_error.h"
+#include "support/small_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -9,18 +11,6 @@
 
 namespace xparam {
 namespace {
-
-// Runs `f`, expects an InputError, and returns its message.
-template <typename F>
-std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return {};
-}
 
 AnchorSpec vertex_anchor(const std::string& name, int index, const std::string& file = "a.txt",
                          int line = 1) {
@@ -31,19 +21,6 @@ AnchorSet four_vertices(const std::string& file) {
   return {file,
           {vertex_anchor("Nose", 1, file, 1), vertex_anchor("Lt. Axilla, Ant.", 2, file, 2),
            vertex_anchor("tail", 3, file, 3), vertex_anchor("Tail", 4, file, 4)}};
-}
-
-Mesh tetrahedron() {
-  Mesh mesh;
-  const VertexHandle a = mesh.add_vertex({0, 0, 0});
-  const VertexHandle b = mesh.add_vertex({1, 0, 0});
-  const VertexHandle c = mesh.add_vertex({0, 1, 0});
-  const VertexHandle d = mesh.add_vertex({0, 0, 1});
-  mesh.add_face(a, c, b);
-  mesh.add_face(a, b, d);
-  mesh.add_face(b, c, d);
-  mesh.add_face(c, a, d);
-  return mesh;
 }
 
 TEST(Anchors, WhereNamesFileAndLine) {
@@ -63,24 +40,24 @@ TEST(Anchors, BarycentricProblems) {
 }
 
 TEST(Anchors, CheckAnchorRejectsEachBadLocation) {
-  EXPECT_NE(input_error_of([] {
+  EXPECT_NE(test::error_message_of([] {
               check_anchor(vertex_anchor("Nose", -3, "a.txt", 7));
             }).find("a.txt:7: anchor \"Nose\": negative vertex index -3"),
             std::string::npos);
   const double inf = std::numeric_limits<double>::infinity();
-  EXPECT_NE(input_error_of([&] {
+  EXPECT_NE(test::error_message_of([&] {
               check_anchor({"P", AnchorPosition{{0, inf, 0}}, "a.pp", 3});
             }).find("a.pp:3: anchor \"P\": position is not finite"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] {
+  EXPECT_NE(test::error_message_of([] {
               check_anchor({"F", SurfacePoint{-1, {1, 0, 0}}, "a.json", 2});
             }).find("negative face index -1"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] {
+  EXPECT_NE(test::error_message_of([] {
               check_anchor({"F", SurfacePoint{4, {0.5, 0.6, 0}}, "a.json", 2});
             }).find("a.json:2: anchor \"F\": barycentric coordinates sum to 1.1"),
             std::string::npos);
-  EXPECT_NE(input_error_of([] {
+  EXPECT_NE(test::error_message_of([] {
               check_anchor(vertex_anchor("", 1, "a.txt", 5));
             }).find("a.txt:5: anchor with an empty name"),
             std::string::npos);
@@ -93,14 +70,14 @@ TEST(Anchors, CheckSetFindsDuplicatesAndTooFewAnchors) {
 
   AnchorSet duplicate_name = four_vertices("a.txt");
   duplicate_name.anchors.push_back(vertex_anchor("Nose", 9, "a.txt", 8));
-  const std::string name_message = input_error_of([&] { check_anchor_set(duplicate_name); });
+  const std::string name_message = test::error_message_of([&] { check_anchor_set(duplicate_name); });
   EXPECT_NE(name_message.find("a.txt:8: duplicate anchor name \"Nose\" (first at a.txt:1)"),
             std::string::npos)
       << name_message;
 
   AnchorSet same_vertex = four_vertices("a.txt");
   same_vertex.anchors.push_back(vertex_anchor("Chin", 2, "a.txt", 9));
-  const std::string vertex_message = input_error_of([&] { check_anchor_set(same_vertex); });
+  const std::string vertex_message = test::error_message_of([&] { check_anchor_set(same_vertex); });
   EXPECT_NE(
       vertex_message.find("a.txt:9: anchor \"Chin\": same vertex 2 as anchor \"Lt. Axilla, Ant.\" (a.txt:2)"),
       std::string::npos)
@@ -108,7 +85,8 @@ TEST(Anchors, CheckSetFindsDuplicatesAndTooFewAnchors) {
 
   AnchorSet three = four_vertices("a.txt");
   three.anchors.pop_back();
-  EXPECT_EQ(input_error_of([&] { check_anchor_set(three); }), "a.txt: 3 anchors; at least 4 are needed");
+  EXPECT_EQ(test::error_message_of([&] { check_anchor_set(three); }),
+            "a.txt: 3 anchors; at least 4 are needed");
 }
 
 TEST(Anchors, MatchReordersTheTargetIntoTheSourceOrder) {
@@ -133,7 +111,7 @@ TEST(Anchors, MatchListsTheNamesMissingOnEachSideWithBothFiles) {
   AnchorSet target = four_vertices("scan.pp");
   target.anchors[0].name = "nose";  // case differs: missing on both sides
   target.anchors.push_back(vertex_anchor("Chin", 7, "scan.pp", 5));
-  const std::string message = input_error_of([&] { match_anchors(source, target); });
+  const std::string message = test::error_message_of([&] { match_anchors(source, target); });
   EXPECT_EQ(
       message,
       "anchors differ between template.json and scan.pp; missing in scan.pp: \"Nose\" (template.json:1); "
@@ -144,14 +122,14 @@ TEST(Anchors, MatchRefusesADuplicateName) {
   const AnchorSet source = four_vertices("template.json");
   AnchorSet target = four_vertices("scan.txt");
   target.anchors[3] = vertex_anchor("tail", 8, "scan.txt", 4);
-  EXPECT_NE(input_error_of([&] {
+  EXPECT_NE(test::error_message_of([&] {
               match_anchors(source, target);
             }).find("scan.txt:4: duplicate anchor name \"tail\" (first at scan.txt:3)"),
             std::string::npos);
 }
 
 TEST(Anchors, VertexSurfacePointIsTheVertex) {
-  const Mesh mesh = tetrahedron();
+  const Mesh mesh = test::tetrahedron_mesh();
   for (VertexHandle v : mesh.vertices()) {
     const SurfacePoint point = vertex_surface_point(mesh, v);
     int lowest = std::numeric_limits<int>::max();

@@ -4,6 +4,7 @@
 #include "core/orientation.h"
 #include "core/surface_point.h"
 #include "core/validation.h"
+#include "support/small_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -13,15 +14,6 @@
 
 namespace xparam {
 namespace {
-
-// Unit tetrahedron with outward faces (volume 1/6).
-TriangleSoup tetrahedron() {
-  TriangleSoup soup;
-  soup.source = "tet.obj";
-  soup.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  soup.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
-  return soup;
-}
 
 // A UV sphere (closed, outward) with triangles listed in a scrambled order and with
 // scrambled starting corners, so the test would notice any reordering by OpenMesh.
@@ -33,7 +25,8 @@ TriangleSoup scrambled_sphere(int rings, int sectors) {
     const double theta = M_PI * r / rings;
     for (int s = 0; s < sectors; ++s) {
       const double phi = 2 * M_PI * s / sectors;
-      soup.vertices.push_back({std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
+      soup.vertices.push_back(
+          {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
     }
   }
   soup.vertices.push_back({0, 0, -1});
@@ -93,7 +86,7 @@ TEST(MeshBuilder, ReversedOrderSwapsTheLastTwoCorners) {
 }
 
 TEST(MeshBuilder, RefusedFaceIsNamed) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   soup.vertices.push_back({1, 1, 1});
   soup.triangles.push_back({0, 1, 4});  // a third face on edge (0, 1): OpenMesh refuses it
   try {
@@ -105,7 +98,7 @@ TEST(MeshBuilder, RefusedFaceIsNamed) {
 }
 
 TEST(Orientation, SignedVolumeOfTetrahedronAndSphere) {
-  const TriangleSoup tet = tetrahedron();
+  const TriangleSoup tet = test::tetrahedron_soup();
   EXPECT_NEAR(signed_volume(build_mesh(tet)), 1.0 / 6.0, 1e-15);
   EXPECT_NEAR(signed_volume(build_mesh(tet, TriangleOrder::Reversed)), -1.0 / 6.0, 1e-15);
 
@@ -143,8 +136,8 @@ TEST(Orientation, FileOrderRecoversTheFileTrianglesAndPoints) {
     const Eigen::Vector3d file_bary = to_file_order(order, static_cast<int>(j), mesh_bary);
     EXPECT_EQ(file_bary, reversed ? Eigen::Vector3d(0.2, 0.3, 0.5) : mesh_bary);
     EXPECT_EQ(to_file_order(order, static_cast<int>(j), file_bary), mesh_bary);  // its own inverse
-    const Eigen::Vector3d on_file =
-        file_bary[0] * file.vertices[t[0]] + file_bary[1] * file.vertices[t[1]] + file_bary[2] * file.vertices[t[2]];
+    const Eigen::Vector3d on_file = file_bary[0] * file.vertices[t[0]] + file_bary[1] * file.vertices[t[1]] +
+                                    file_bary[2] * file.vertices[t[2]];
     EXPECT_NEAR((position(mesh, SurfacePoint{static_cast<int>(j), mesh_bary}) - on_file).norm(), 0.0, 1e-15);
   }
   // A face index outside the mesh is left alone (the anchor or curve check reports it).

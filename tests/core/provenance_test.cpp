@@ -1,28 +1,15 @@
 #include "core/provenance.h"
 
 #include "core/errors.h"
+#include "support/small_meshes.h"
 
 #include <gtest/gtest.h>
 
 namespace xparam {
 namespace {
 
-// A tetrahedron whose input faces are known, refined by one face split and one edge split.
-Mesh tetrahedron() {
-  Mesh mesh;
-  const VertexHandle a = mesh.add_vertex({0, 0, 0});
-  const VertexHandle b = mesh.add_vertex({1, 0, 0});
-  const VertexHandle c = mesh.add_vertex({0, 1, 0});
-  const VertexHandle d = mesh.add_vertex({0, 0, 1});
-  mesh.add_face(a, c, b);
-  mesh.add_face(a, b, d);
-  mesh.add_face(b, c, d);
-  mesh.add_face(c, a, d);
-  return mesh;
-}
-
 TEST(Provenance, FaceSplitKeepsInputFaceAndLocatesPoints) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh refined = input;
   init_provenance(refined);
   const Eigen::Vector3d inside(0.2, 0.3, 0.0);  // inside face 0 (a, c, b), on z = 0
@@ -36,11 +23,12 @@ TEST(Provenance, FaceSplitKeepsInputFaceAndLocatesPoints) {
 }
 
 TEST(Provenance, EdgeSplitGivesEachNewFaceTheInputFaceItWasCutFrom) {
-  const Mesh input = tetrahedron();
+  const Mesh input = test::tetrahedron_mesh();
   Mesh refined = input;
   init_provenance(refined);
   // Edge (a, b) lies between input faces 0 and 1.
-  const EdgeHandle ab = refined.edge_handle(refined.find_halfedge(refined.vertex_handle(0), refined.vertex_handle(1)));
+  const EdgeHandle ab =
+      refined.edge_handle(refined.find_halfedge(refined.vertex_handle(0), refined.vertex_handle(1)));
   const Eigen::Vector3d mid(0.5, 0.0, 0.0);
   const VertexHandle v = split_edge_keeping_provenance(refined, ab, mid);
   EXPECT_EQ(refined.n_faces(), 6u);
@@ -61,7 +49,7 @@ TEST(Provenance, EdgeSplitGivesEachNewFaceTheInputFaceItWasCutFrom) {
 }
 
 TEST(Provenance, MissingProvenanceIsAnInternalError) {
-  const Mesh mesh = tetrahedron();
+  const Mesh mesh = test::tetrahedron_mesh();
   EXPECT_FALSE(has_provenance(mesh));
   EXPECT_THROW(input_face(mesh, mesh.face_handle(0)), InternalError);
 }

@@ -1,6 +1,7 @@
 #include "core/validation.h"
 
 #include "core/errors.h"
+#include "support/small_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -11,15 +12,6 @@
 namespace xparam {
 namespace {
 
-// Unit tetrahedron with outward faces.
-TriangleSoup tetrahedron() {
-  TriangleSoup soup;
-  soup.source = "tet.obj";
-  soup.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  soup.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
-  return soup;
-}
-
 // A torus as an n x m grid of quads, each split into two consistently oriented triangles.
 TriangleSoup torus(int n, int m) {
   TriangleSoup soup;
@@ -28,7 +20,8 @@ TriangleSoup torus(int n, int m) {
     for (int j = 0; j < m; ++j) {
       const double u = 2 * M_PI * i / n;
       const double v = 2 * M_PI * j / m;
-      soup.vertices.push_back({(2 + std::cos(v)) * std::cos(u), (2 + std::cos(v)) * std::sin(u), std::sin(v)});
+      soup.vertices.push_back(
+          {(2 + std::cos(v)) * std::cos(u), (2 + std::cos(v)) * std::sin(u), std::sin(v)});
     }
   }
   const auto id = [&](int i, int j) { return (i % n) * m + (j % m); };
@@ -77,7 +70,7 @@ int count_kind(const MeshReport& report, ProblemKind kind) {
 }
 
 TEST(Validation, TetrahedronIsUsableGenusZero) {
-  const MeshReport r = validate_soup(tetrahedron());
+  const MeshReport r = validate_soup(test::tetrahedron_soup());
   EXPECT_EQ(r.source, "tet.obj");
   EXPECT_EQ(r.vertices, 4);
   EXPECT_EQ(r.faces, 4);
@@ -112,7 +105,7 @@ TEST(Validation, TorusHasGenusOne) {
 }
 
 TEST(Validation, OpenMeshHasOneBoundaryLoop) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   soup.triangles.erase(soup.triangles.begin());  // remove face (0, 2, 1)
   const MeshReport r = validate_soup(soup);
   EXPECT_EQ(r.boundary_loops, 1);
@@ -121,7 +114,8 @@ TEST(Validation, OpenMeshHasOneBoundaryLoop) {
   ASSERT_TRUE(r.genus.has_value());
   EXPECT_EQ(*r.genus, 0);  // a disk
   EXPECT_FALSE(r.usable);
-  EXPECT_TRUE(has_problem(r, ProblemKind::Boundary, "tet.obj: not closed: boundary loop of 3 edges through edge (0, 1)"));
+  EXPECT_TRUE(has_problem(r, ProblemKind::Boundary,
+                          "tet.obj: not closed: boundary loop of 3 edges through edge (0, 1)"));
 }
 
 TEST(Validation, TwoHolesAreTwoLoopsAndAPinchedBoundaryIsOne) {
@@ -155,7 +149,8 @@ TEST(Validation, TwoHolesAreTwoLoopsAndAPinchedBoundaryIsOne) {
   // is a pinch).
   TriangleSoup pinched = torus(8, 6);
   // Quad (i, j) holds triangles 2 * (i * 6 + j) and + 1; quads (2, 2) and (3, 3) share vertex (3, 3).
-  for (int q : {3 * 6 + 3, 2 * 6 + 2}) pinched.triangles.erase(pinched.triangles.begin() + 2 * q, pinched.triangles.begin() + 2 * q + 2);
+  for (int q : {3 * 6 + 3, 2 * 6 + 2})
+    pinched.triangles.erase(pinched.triangles.begin() + 2 * q, pinched.triangles.begin() + 2 * q + 2);
   ValidationSettings as_is;
   as_is.repair = false;
   r = validate_soup(pinched, as_is);
@@ -192,7 +187,7 @@ TEST(Validation, NonManifoldEdgeIsNamedWithFileIndices) {
 }
 
 TEST(Validation, TwoTetrahedraTouchingAtAVertexArePinched) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   // Second tetrahedron shares vertex 0 only, mirrored through the origin.
   for (int v = 1; v < 4; ++v) soup.vertices.push_back(-soup.vertices[v]);
   const std::array<int, 4> map{0, 4, 5, 6};
@@ -219,7 +214,7 @@ TEST(Validation, TwoTetrahedraTouchingAtAVertexArePinched) {
 }
 
 TEST(Validation, FlippedFaceIsInconsistentButOrientable) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   std::swap(soup.triangles[2][1], soup.triangles[2][2]);  // (1, 3, 2)
   const MeshReport r = validate_soup(soup);
   EXPECT_TRUE(r.orientable);
@@ -280,10 +275,10 @@ TEST(Validation, RepairReorientsExactlyTheFlippedFaces) {
 }
 
 TEST(Validation, RepairTieKeepsTheLowestFacesWinding) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   for (int f : {1, 3}) std::swap(soup.triangles[f][1], soup.triangles[f][2]);
   EXPECT_EQ(repair_soup(soup).reoriented_faces, (std::vector<int>{1, 3}));
-  soup = tetrahedron();
+  soup = test::tetrahedron_soup();
   for (int f : {0, 3}) std::swap(soup.triangles[f][1], soup.triangles[f][2]);
   EXPECT_EQ(repair_soup(soup).reoriented_faces, (std::vector<int>{1, 2}));
 }
@@ -360,7 +355,7 @@ TEST(Validation, PinchedDoublePyramidSplitsIntoASphere) {
 
 TEST(Validation, NonManifoldEdgesAreNotRepaired) {
   // A fin on a tetrahedron with one face flipped: the edge stays refused, nothing is repaired.
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   std::swap(soup.triangles[2][1], soup.triangles[2][2]);
   soup.vertices.push_back({1, 1, 1});
   soup.triangles.push_back({0, 1, 4});
@@ -384,7 +379,7 @@ TEST(Validation, MoebiusBandIsNotOrientable) {
 }
 
 TEST(Validation, DegenerateAndNearZeroAreaFaces) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   soup.vertices.push_back({2, 0, 0});        // 4: collinear with 0 and 1
   soup.vertices.push_back({0.5, 1e-13, 0});  // 5: almost on edge (0, 1)
   soup.triangles.push_back({0, 1, 4});       // 4: zero area
@@ -404,7 +399,7 @@ TEST(Validation, DegenerateAndNearZeroAreaFaces) {
 }
 
 TEST(Validation, NonFiniteCoordinatesAreReportedAndLeftOutOfTheBoundingBox) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   soup.vertices[3].z() = std::numeric_limits<double>::quiet_NaN();
   const MeshReport r = validate_soup(soup);
   EXPECT_EQ(r.non_finite_vertices, std::vector<int>{3});
@@ -415,7 +410,7 @@ TEST(Validation, NonFiniteCoordinatesAreReportedAndLeftOutOfTheBoundingBox) {
 }
 
 TEST(Validation, UnreferencedVerticesBlockUseButNotTheEulerCount) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   for (int i = 0; i < 5; ++i) soup.vertices.push_back({5.0 + i, 0, 0});
   ValidationSettings settings;
   settings.max_listed_per_kind = 2;
@@ -431,7 +426,7 @@ TEST(Validation, UnreferencedVerticesBlockUseButNotTheEulerCount) {
 }
 
 TEST(Validation, TwoComponents) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   for (int v = 0; v < 4; ++v) soup.vertices.push_back(soup.vertices[v] + Eigen::Vector3d(3, 0, 0));
   for (int f = 0; f < 4; ++f) {
     const auto t = soup.triangles[f];
@@ -441,7 +436,8 @@ TEST(Validation, TwoComponents) {
   EXPECT_EQ(r.components, 2);
   EXPECT_EQ(r.euler_characteristic, 4);
   EXPECT_FALSE(r.genus.has_value());
-  EXPECT_TRUE(has_problem(r, ProblemKind::MultipleComponents, "tet.obj: component 2 of 2 has 4 faces, starting at face 4"));
+  EXPECT_TRUE(has_problem(r, ProblemKind::MultipleComponents,
+                          "tet.obj: component 2 of 2 has 4 faces, starting at face 4"));
   EXPECT_FALSE(r.usable);
 }
 
@@ -474,7 +470,7 @@ TEST(Validation, EmptySoupIsNotUsable) {
 }
 
 TEST(Validation, OutOfRangeIndexIsAnInternalError) {
-  TriangleSoup soup = tetrahedron();
+  TriangleSoup soup = test::tetrahedron_soup();
   soup.triangles[1][2] = 4;
   EXPECT_THROW(validate_soup(soup), InternalError);
 }

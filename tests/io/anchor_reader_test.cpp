@@ -3,6 +3,7 @@
 #include "core/anchor_placement.h"
 #include "core/errors.h"
 #include "core/provenance.h"
+#include "support/expect_error.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
@@ -15,19 +16,6 @@
 
 namespace xparam {
 namespace {
-
-template <typename F>
-std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return {};
-}
-
-#define EXPECT_MESSAGE_HAS(message, part) EXPECT_NE((message).find(part), std::string::npos) << (message)
 
 Mesh load(const std::filesystem::path& path) {
   Mesh mesh;
@@ -277,7 +265,7 @@ TEST(AnchorReaderJson, CanonicalFormWithEveryLocationKind) {
 
 TEST(AnchorReaderJson, ErrorsNameFileAndLine) {
   const auto error = [](const std::string& text) {
-    return input_error_of([&] { parse_anchors_json(text, "e.json"); });
+    return test::error_message_of([&] { parse_anchors_json(text, "e.json"); });
   };
   EXPECT_MESSAGE_HAS(error("{\"a\": 1,\n \"b\": }"), "e.json: invalid JSON at byte 16");
   EXPECT_MESSAGE_HAS(error("[1, 2]"), "e.json:1: expected a JSON object");
@@ -368,7 +356,7 @@ TEST(AnchorReaderPickedPoints, PointsInactivePointsCommentsAndEntities) {
 
 TEST(AnchorReaderPickedPoints, ErrorsNameFileAndLine) {
   const auto error = [](const std::string& text) {
-    return input_error_of([&] { parse_picked_points(text, "e.pp"); });
+    return test::error_message_of([&] { parse_picked_points(text, "e.pp"); });
   };
   EXPECT_MESSAGE_HAS(error("<points></points>"), "e.pp: not a MeshLab picked-points file");
   EXPECT_MESSAGE_HAS(error(picked(kThreePoints + " <point x=\"1\" y=\"1\" name=\"d\"/>\n")),
@@ -419,7 +407,7 @@ TEST(AnchorReaderText, IndicesPositionsQuotesAndComments) {
 
 TEST(AnchorReaderText, ErrorsNameFileAndLine) {
   const auto error = [](const std::string& text) {
-    return input_error_of([&] { parse_anchors_text(text, "e.txt"); });
+    return test::error_message_of([&] { parse_anchors_text(text, "e.txt"); });
   };
   const std::string three = "a 1\nb 2\n# c\nc 3\n";
   EXPECT_MESSAGE_HAS(error(three + "Lt. Acromion 1862\n"),
@@ -459,9 +447,9 @@ TEST(AnchorReader, DispatchesOnTheExtensionCaseInsensitively) {
   EXPECT_EQ(read_anchors(write("a.landmarks", "a 1\nb 2\nc 3\nd 4\n")).anchors.size(), 4u);
   // A JSON file is not read as text: the error is a JSON one, naming the path.
   const std::filesystem::path broken = write("broken.json", "a 1\nb 2\nc 3\nd 4\n");
-  EXPECT_MESSAGE_HAS(input_error_of([&] { read_anchors(broken); }),
+  EXPECT_MESSAGE_HAS(test::error_message_of([&] { read_anchors(broken); }),
                      broken.string() + ": invalid JSON at byte");
-  EXPECT_MESSAGE_HAS(input_error_of([&] { read_anchors(dir / "missing.txt"); }),
+  EXPECT_MESSAGE_HAS(test::error_message_of([&] { read_anchors(dir / "missing.txt"); }),
                      "missing.txt: cannot open the file");
   std::filesystem::remove_all(dir);
 }

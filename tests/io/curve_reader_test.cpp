@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "io/anchor_reader.h"
+#include "support/expect_error.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
@@ -11,19 +12,6 @@
 
 namespace xparam {
 namespace {
-
-template <typename F>
-std::string input_error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  ADD_FAILURE() << "no InputError thrown";
-  return {};
-}
-
-#define EXPECT_MESSAGE_HAS(message, part) EXPECT_NE((message).find(part), std::string::npos) << (message)
 
 const Mesh& human_man() {
   static const Mesh mesh = [] {
@@ -92,7 +80,7 @@ TEST(CurveReader, SchemaExamplesAreReadAndValid) {
 
 TEST(CurveReader, StructureErrorsNameFileAndLine) {
   const auto error = [](const std::string& text) {
-    return input_error_of([&] { parse_curves_json(text, "c.json"); });
+    return test::error_message_of([&] { parse_curves_json(text, "c.json"); });
   };
   EXPECT_MESSAGE_HAS(error("{\"curves\": [\n"), "c.json: invalid JSON at byte");
   EXPECT_MESSAGE_HAS(error("[]"), "c.json:1: expected a JSON object");
@@ -120,7 +108,7 @@ TEST(CurveReader, StructureErrorsNameFileAndLine) {
 TEST(CurveReader, ValidationErrorsNameFileCurveAndPoint) {
   const Mesh& mesh = human_man();
   const auto error = [&](const std::string& curves) {
-    return input_error_of(
+    return test::error_message_of(
         [&] { validate_curves(parse_curves_json("{\"curves\": [\n" + curves + "]}", "c.json"), mesh); });
   };
   EXPECT_MESSAGE_HAS(error("{\"name\": \"w\", \"points\": [1, 6890]}"),
@@ -152,7 +140,7 @@ TEST(CurveReader, ValidationErrorsNameFileCurveAndPoint) {
 }
 
 TEST(CurveReader, FileErrorsNameThePath) {
-  EXPECT_MESSAGE_HAS(input_error_of([] { read_curves(test::data_path("no_such.curves.json")); }),
+  EXPECT_MESSAGE_HAS(test::error_message_of([] { read_curves(test::data_path("no_such.curves.json")); }),
                      "no_such.curves.json: cannot open the file");
 }
 
