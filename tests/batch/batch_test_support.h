@@ -4,14 +4,13 @@
 
 #include "batch/template_preparation.h"
 #include "io/archive_reader.h"
+#include "support/record_comparison.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 
-#include <bit>
-#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -47,14 +46,17 @@ inline void copy_sample_targets(const fs::path& dir, const std::vector<std::stri
   fs::create_directories(dir);
   for (const auto& entry : fs::directory_iterator(sample_targets()))
     for (const std::string& name : names)
-      if (entry.path().filename().string().rfind(name + ".", 0) == 0) fs::copy_file(entry.path(), dir / entry.path().filename());
+      if (entry.path().filename().string().rfind(name + ".", 0) == 0)
+        fs::copy_file(entry.path(), dir / entry.path().filename());
 }
 
 // Anchors with the template's 41 names at vertices 0..40 of some mesh, one name optionally replaced.
-inline std::string anchors_json_at_first_vertices(const std::string& replaced = "", const std::string& by = "") {
+inline std::string anchors_json_at_first_vertices(const std::string& replaced = "",
+                                                  const std::string& by = "") {
   const std::string text = read_file(data_path("human.anchors.json"));
   std::vector<std::string> names;
-  for (std::size_t at = text.find("\"name\": \""); at != std::string::npos; at = text.find("\"name\": \"", at + 1)) {
+  for (std::size_t at = text.find("\"name\": \""); at != std::string::npos;
+       at = text.find("\"name\": \"", at + 1)) {
     const std::size_t start = at + 9;
     names.push_back(text.substr(start, text.find('"', start) - start));
   }
@@ -83,50 +85,15 @@ inline void add_broken_targets(const fs::path& dir) {
   write_file(dir / "unknown_name.anchors.json", anchors_json_at_first_vertices("CROTCH", "NOT_A_LANDMARK"));
 }
 
-inline bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
-
-template <typename A, typename B>
-bool same_array(const A& a, const B& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols()) return false;
-  for (Eigen::Index i = 0; i < a.size(); ++i)
-    if (!same_bits(static_cast<double>(a.data()[i]), static_cast<double>(b.data()[i]))) return false;
-  return true;
-}
-
 // Every deterministic dataset of two archives is bit-identical (all but the timings).
 inline void expect_same_datasets(const fs::path& a_path, const fs::path& b_path) {
   const ArchiveContents a = read_archive(a_path);
   const ArchiveContents b = read_archive(b_path);
   EXPECT_EQ(a.provenance.options_json, b.provenance.options_json);
-  EXPECT_TRUE(same_array(a.template_record.vertices, b.template_record.vertices));
-  EXPECT_TRUE(same_array(a.template_record.faces, b.template_record.faces));
+  EXPECT_TRUE(same_bits(a.template_record.vertices, b.template_record.vertices));
+  EXPECT_TRUE(same_bits(a.template_record.faces, b.template_record.faces));
   ASSERT_EQ(a.targets.size(), b.targets.size()) << a_path << " vs " << b_path;
-  for (std::size_t t = 0; t < a.targets.size(); ++t) {
-    const TargetRecord& x = a.targets[t];
-    const TargetRecord& y = b.targets[t];
-    SCOPED_TRACE(x.name);
-    EXPECT_EQ(x.name, y.name);
-    EXPECT_EQ(x.ok, y.ok);
-    EXPECT_EQ(x.error, y.error);
-    EXPECT_EQ(x.mesh_sha256, y.mesh_sha256);
-    EXPECT_EQ(x.anchors_sha256, y.anchors_sha256);
-    EXPECT_TRUE(same_array(x.remesh_vertices, y.remesh_vertices));
-    EXPECT_TRUE(same_array(x.corr_face, y.corr_face));
-    EXPECT_TRUE(same_array(x.corr_bary, y.corr_bary));
-    EXPECT_TRUE(same_array(x.face_patch, y.face_patch));
-    EXPECT_TRUE(same_array(x.face_l2_stretch, y.face_l2_stretch));
-    EXPECT_TRUE(same_array(x.face_angle_distortion, y.face_angle_distortion));
-    ASSERT_EQ(x.curves.size(), y.curves.size());
-    for (std::size_t c = 0; c < x.curves.size(); ++c) {
-      EXPECT_EQ(x.curves[c].face, y.curves[c].face);
-      EXPECT_TRUE(same_array(x.curves[c].bary, y.curves[c].bary));
-      EXPECT_TRUE(same_array(x.curves[c].xyz, y.curves[c].xyz));
-    }
-    EXPECT_TRUE(same_bits(x.metrics.e_l2, y.metrics.e_l2));
-    EXPECT_TRUE(same_bits(x.metrics.e_ang, y.metrics.e_ang));
-    EXPECT_TRUE(same_bits(x.metrics.gt_error, y.metrics.gt_error));
-    EXPECT_EQ(x.metrics.flipped_faces, y.metrics.flipped_faces);
-  }
+  for (std::size_t t = 0; t < a.targets.size(); ++t) expect_same_results(a.targets[t], b.targets[t]);
 }
 
 // Debian's interpreter first: a user-installed python3 earlier in PATH may lack h5py.
@@ -139,7 +106,9 @@ inline std::string python_with_h5py() {
 }
 
 // The independent reader of the archive tests (h5py + numpy).
-inline fs::path read_back_script() { return fs::path(XPARAM_SOURCE_DIR) / "tests" / "io" / "archive_read_back.py"; }
+inline fs::path read_back_script() {
+  return fs::path(XPARAM_SOURCE_DIR) / "tests" / "io" / "archive_read_back.py";
+}
 
 // Single-quoted for the shell (built by appending: GCC 12 misreports "literal" + std::string&&
 // under -Wrestrict).

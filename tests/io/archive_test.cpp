@@ -13,13 +13,14 @@
 #include "io/xdmf.h"
 
 #include "core/errors.h"
+#include "support/record_comparison.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -33,6 +34,8 @@ namespace xparam {
 namespace {
 
 namespace fs = std::filesystem;
+using test::expect_same_results;
+using test::same_bits;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 TemplateRecord make_template(int n_vertices) {
@@ -47,7 +50,8 @@ TemplateRecord make_template(int n_vertices) {
   t.vertices.resize(n_vertices, 3);
   for (int i = 0; i < n_vertices; ++i) t.vertices.row(i) << i, (i * i) % 7, std::sin(i);
   t.faces.resize(n_faces, 3);
-  for (int f = 0; f < n_faces; ++f) t.faces.row(f) << f % n_vertices, (f + 1) % n_vertices, (f + 3) % n_vertices;
+  for (int f = 0; f < n_faces; ++f)
+    t.faces.row(f) << f % n_vertices, (f + 1) % n_vertices, (f + 3) % n_vertices;
   t.anchor_names = {"nose", "chin", "ear_left"};
   t.anchor_vertices = {0, n_vertices / 2, n_vertices - 1};
   for (int c = 0; c < 2; ++c) {
@@ -135,47 +139,9 @@ std::vector<TargetRecord> make_targets(const TemplateRecord& t) {
 
 ArchiveProvenance test_provenance() { return current_provenance(R"({"metric":"SDL","merge":true})"); }
 
-// Bitwise equality, so NaN == NaN and -0.0 != 0.0.
-template <typename A, typename B>
-bool same_bits(const A& a, const B& b) {
-  // An empty matrix may have a null data pointer, which memcmp must not see.
-  return a.rows() == b.rows() && a.cols() == b.cols() &&
-         (a.size() == 0 ||
-          std::memcmp(a.data(), b.data(), sizeof(typename A::Scalar) * static_cast<std::size_t>(a.size())) == 0);
-}
-
-bool same_double(double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; }
-
 void expect_same_target(const TargetRecord& a, const TargetRecord& b) {
-  SCOPED_TRACE(a.name);
-  EXPECT_EQ(a.name, b.name);
-  EXPECT_EQ(a.ok, b.ok);
-  EXPECT_EQ(a.error, b.error);
-  EXPECT_EQ(a.mesh_file, b.mesh_file);
-  EXPECT_EQ(a.anchors_file, b.anchors_file);
-  EXPECT_EQ(a.mesh_sha256, b.mesh_sha256);
-  EXPECT_EQ(a.anchors_sha256, b.anchors_sha256);
-  EXPECT_TRUE(same_bits(a.remesh_vertices, b.remesh_vertices));
-  EXPECT_TRUE(same_bits(a.corr_face, b.corr_face));
-  EXPECT_TRUE(same_bits(a.corr_bary, b.corr_bary));
-  EXPECT_TRUE(same_bits(a.face_patch, b.face_patch));
-  EXPECT_TRUE(same_bits(a.face_l2_stretch, b.face_l2_stretch));
-  EXPECT_TRUE(same_bits(a.face_angle_distortion, b.face_angle_distortion));
-  ASSERT_EQ(a.curves.size(), b.curves.size());
-  for (std::size_t c = 0; c < a.curves.size(); ++c) {
-    EXPECT_EQ(a.curves[c].face, b.curves[c].face);
-    EXPECT_TRUE(same_bits(a.curves[c].bary, b.curves[c].bary));
-    EXPECT_TRUE(same_bits(a.curves[c].xyz, b.curves[c].xyz));
-  }
-  EXPECT_TRUE(same_double(a.metrics.e_l2, b.metrics.e_l2));
-  EXPECT_TRUE(same_double(a.metrics.e_ang, b.metrics.e_ang));
-  EXPECT_TRUE(same_double(a.metrics.stretch_max_sv, b.metrics.stretch_max_sv));
-  EXPECT_EQ(a.metrics.flipped_faces, b.metrics.flipped_faces);
-  EXPECT_TRUE(same_double(a.metrics.area_ratio, b.metrics.area_ratio));
-  EXPECT_TRUE(same_double(a.metrics.gt_error, b.metrics.gt_error));
-  EXPECT_EQ(a.metrics.swaps, b.metrics.swaps);
-  EXPECT_EQ(a.metrics.merges, b.metrics.merges);
-  for (std::size_t s = 0; s < a.seconds.size(); ++s) EXPECT_TRUE(same_double(a.seconds[s], b.seconds[s])) << s;
+  expect_same_results(a, b);
+  for (std::size_t s = 0; s < a.seconds.size(); ++s) EXPECT_TRUE(same_bits(a.seconds[s], b.seconds[s])) << s;
 }
 
 std::vector<TargetRecord> sorted_by_name(std::vector<TargetRecord> targets) {
@@ -220,7 +186,8 @@ std::vector<int> vector_of(const Eigen::VectorXi& v) { return {v.data(), v.data(
 std::vector<double> vector_of(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
 // What archive_read_back.py compares against: every value the test wrote (NaN as null).
-nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p, std::vector<TargetRecord> targets) {
+nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
+                           std::vector<TargetRecord> targets) {
   nlohmann::json e;
   e["schema_version"] = kArchiveSchemaVersion;
   e["xparam_version"] = p.xparam_version;
@@ -325,7 +292,8 @@ TEST(Archive, StoredLayoutIsChunkedPerSubjectDeflatedAndFilled) {
   unsigned flags = 0;
   std::size_t n_values = 1;
   unsigned level = 0;
-  EXPECT_EQ(H5Pget_filter2(plist.get(), 0, &flags, &n_values, &level, 0, nullptr, nullptr), H5Z_FILTER_DEFLATE);
+  EXPECT_EQ(H5Pget_filter2(plist.get(), 0, &flags, &n_values, &level, 0, nullptr, nullptr),
+            H5Z_FILTER_DEFLATE);
   EXPECT_EQ(level, 4u);
 
   // Row 3 is the failed subject_05: NaN positions, -1 faces and patches.
@@ -385,8 +353,9 @@ TEST(Archive, RejectsRecordsThatDoNotFitAndKeepsThePreviousArchive) {
   EXPECT_THROW(write_archive(dir / "run.h5", bad_template, test_provenance(), make_targets(t)), ArchiveError);
   // Unsorted input to the streaming writer.
   const std::vector<TargetRecord> targets = make_targets(t);
-  EXPECT_THROW(write_archive(dir / "run.h5", t, test_provenance(), 2, [&](std::size_t i) { return targets[i]; }),
-               ArchiveError);
+  EXPECT_THROW(
+      write_archive(dir / "run.h5", t, test_provenance(), 2, [&](std::size_t i) { return targets[i]; }),
+      ArchiveError);
 
   EXPECT_EQ(file_bytes(dir / "run.h5"), before);
   EXPECT_FALSE(fs::exists(dir / "run.h5.tmp"));
@@ -425,7 +394,8 @@ TEST(BatchArchive, CommitsFromThreadsAssembleLikeOneWrite) {
   std::vector<std::thread> threads;
   for (int thread = 0; thread < 2; ++thread)
     threads.emplace_back([&, thread] {
-      for (std::size_t i = static_cast<std::size_t>(thread); i < targets.size(); i += 2) batch.commit(targets[i]);
+      for (std::size_t i = static_cast<std::size_t>(thread); i < targets.size(); i += 2)
+        batch.commit(targets[i]);
     });
   for (std::thread& thread : threads) thread.join();
   EXPECT_EQ(batch.committed().size(), targets.size());
@@ -551,7 +521,8 @@ TEST(BatchArchive, SigkillAtAnyInstantLeavesAReadableArchive) {
     ASSERT_EQ(done.targets.size(), committed.size());
     for (std::size_t i = 0; i < committed.size(); ++i) {
       const int k = static_cast<int>(i);
-      expect_same_target(done.targets[i], k % 5 == 3 ? make_failed(name_of(k)) : make_target(t, name_of(k), k));
+      expect_same_target(done.targets[i],
+                         k % 5 == 3 ? make_failed(name_of(k)) : make_target(t, name_of(k), k));
     }
     fs::remove_all(dir);
   }
@@ -572,16 +543,19 @@ TEST(Merge, TwoShardsGiveTheDatasetsOfOneRun) {
   const ArchiveContents merged = read_archive(dir / "merged.h5");
   EXPECT_TRUE(same_template(single.template_record, merged.template_record));
   ASSERT_EQ(merged.targets.size(), single.targets.size());
-  for (std::size_t i = 0; i < single.targets.size(); ++i) expect_same_target(merged.targets[i], single.targets[i]);
+  for (std::size_t i = 0; i < single.targets.size(); ++i)
+    expect_same_target(merged.targets[i], single.targets[i]);
   EXPECT_EQ(file_bytes(dir / "merged.h5"), file_bytes(dir / "single.h5"));
   // Same rows, same grids; only the archive file named in the sidecar differs.
   std::string single_xdmf = file_bytes(xdmf_path(dir / "single.h5"));
-  for (std::size_t at = single_xdmf.find("single.h5"); at != std::string::npos; at = single_xdmf.find("single.h5"))
+  for (std::size_t at = single_xdmf.find("single.h5"); at != std::string::npos;
+       at = single_xdmf.find("single.h5"))
     single_xdmf.replace(at, 6, "merged");
   EXPECT_EQ(file_bytes(xdmf_path(dir / "merged.h5")), single_xdmf);
   const std::string python = python_with_h5py();
   if (!python.empty()) {
-    EXPECT_EQ(run_read_back(python, "--compare " + (dir / "single.h5").string() + " " + (dir / "merged.h5").string()),
+    EXPECT_EQ(run_read_back(python,
+                            "--compare " + (dir / "single.h5").string() + " " + (dir / "merged.h5").string()),
               0);
   }
   fs::remove_all(dir);
@@ -627,7 +601,8 @@ TEST(Xdmf, OneTimeStepPerOkTargetReferencingItsRows) {
   EXPECT_EQ(xml.find("<Time Value=\"3\"/>"), std::string::npos);
   EXPECT_NE(xml.find(">4 0 0 1 1 1 1 12 3</DataItem>"), std::string::npos);  // row 4's hyperslab
   EXPECT_NE(xml.find("run.h5:/template/faces"), std::string::npos);
-  EXPECT_NE(xdmf_text({"a&b<.h5", 1, 3, 1, {"x\"y"}, {0}}).find("<Grid Name=\"x&quot;y\""), std::string::npos);
+  EXPECT_NE(xdmf_text({"a&b<.h5", 1, 3, 1, {"x\"y"}, {0}}).find("<Grid Name=\"x&quot;y\""),
+            std::string::npos);
   if (std::system("xmllint --version > /dev/null 2>&1") == 0) {
     EXPECT_EQ(std::system(("xmllint --noout " + (dir / "run.xdmf").string()).c_str()), 0);
   }
@@ -648,7 +623,8 @@ TEST(ReadBack, H5pyReadsEveryValueWithoutXparam) {
   std::vector<TargetRecord> altered = targets;
   altered[4].remesh_vertices(5, 1) += 1e-12;
   std::ofstream(dir / "altered.json") << expectation(t, test_provenance(), altered).dump();
-  EXPECT_NE(run_read_back(python, (dir / "run.h5").string() + " " + (dir / "altered.json").string() + " 2>/dev/null"),
+  EXPECT_NE(run_read_back(python,
+                          (dir / "run.h5").string() + " " + (dir / "altered.json").string() + " 2>/dev/null"),
             0);
   fs::remove_all(dir);
 }
