@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "core/provenance.h"
+#include "domain/quad_workspace.h"
 #include "layout/chain_edit.h"
 #include "layout/path_tracing.h"
 #include "layout/vertex_labels.h"
@@ -13,26 +14,6 @@
 
 namespace xparam {
 namespace {
-
-// The layout halfedges around the quad of `quad` (named by where they run).
-struct QuadHalfedges {
-  int bl = -1, la = -1;  // the left patch's walk is 2e (a -> b), b -> l, l -> a
-  int ar = -1, rb = -1;  // the right patch's walk is 2e + 1 (b -> a), a -> r, r -> b
-};
-
-QuadHalfedges quad_halfedges(const Layout& layout, const SwapQuad& quad) {
-  const auto after = [&](int patch, int h, int steps) {
-    const std::vector<int>& walk = layout.patches[patch];
-    const auto at = std::find(walk.begin(), walk.end(), h) - walk.begin();
-    return walk[(at + steps) % 3];
-  };
-  QuadHalfedges q;
-  q.bl = after(quad.left_patch, 2 * quad.edge, 1);
-  q.la = after(quad.left_patch, 2 * quad.edge, 2);
-  q.ar = after(quad.right_patch, 2 * quad.edge + 1, 1);
-  q.rb = after(quad.right_patch, 2 * quad.edge + 1, 2);
-  return q;
-}
 
 int degree(const Layout& layout, int anchor) {
   int count = 0;
@@ -105,12 +86,14 @@ std::array<double, 2> patch_areas(const Mesh& mesh, const std::array<int, 2>& pa
   return area;
 }
 
-// The swap itself, on `layout` (a working copy): trace l -> r inside the quad on both sides,
-// re-wire the combinatorics, re-label the quad's faces, stretch. On "no path" it stops with
-// the refusal and `layout` half changed (the caller throws the copy away).
-SwapTrial perform_swap(Layout& layout, const SwapQuad& quad, const StretchSettings& settings) {
+// The swap itself, on `layout` (the full layout or a quad workspace): trace l -> r inside the
+// quad on both sides, re-wire the combinatorics, re-label the quad's faces, stretch. `quad` is
+// in `layout`'s numbering, `named` the same quad in the caller's, for the trial and its
+// messages. On "no path" it stops with the refusal and `layout` half changed (the caller throws
+// it away).
+SwapTrial perform_swap(Layout& layout, const SwapQuad& quad, const SwapQuad& named, const StretchSettings& settings) {
   SwapTrial trial;
-  trial.quad = quad;
+  trial.quad = named;
   const QuadHalfedges q = quad_halfedges(layout, quad);
   const int e = quad.edge;
   const std::array<int, 2> patches = {quad.left_patch, quad.right_patch};
@@ -129,8 +112,8 @@ SwapTrial perform_swap(Layout& layout, const SwapQuad& quad, const StretchSettin
     TracedPath path = trace_path(s.mesh, labels, s.anchor_vertices[quad.l], first, s.anchor_vertices[quad.r],
                                  last, scratch);
     if (!path.found()) {
-      trial.refusal = "no path from anchor " + std::to_string(quad.l) + " to anchor " +
-                      std::to_string(quad.r) + " inside the quad on side " + std::to_string(side);
+      trial.refusal = "no path from anchor " + std::to_string(named.l) + " to anchor " +
+                      std::to_string(named.r) + " inside the quad on side " + std::to_string(side);
       return trial;
     }
     paths[side] = std::move(path.vertices);
@@ -190,11 +173,11 @@ std::optional<SwapQuad> swap_quad(const Layout& layout, int e) {
 SwapTrial try_swap(const Layout& layout, int e, const StretchSettings& settings) {
   SwapTrial trial = check_swap(layout, e);
   if (!trial.refusal.empty()) return trial;
-  Layout work = layout;
-  trial = perform_swap(work, trial.quad, settings);
+  QuadWorkspace workspace = make_quad_workspace(layout, trial.quad);
+  trial = perform_swap(workspace.layout, workspace.quad, trial.quad, settings);
   if (trial.possible) {
-    trial.after = std::move(work);
-    trial.after_patches = {trial.quad.left_patch, trial.quad.right_patch};
+    trial.after = std::move(workspace.layout);
+    trial.after_patches = {workspace.quad.left_patch, workspace.quad.right_patch};
   }
   return trial;
 }
@@ -204,7 +187,7 @@ void apply_swap(Layout& layout, int e, const StretchSettings& settings) {
   Layout work;
   if (trial.refusal.empty()) {
     work = layout;
-    trial = perform_swap(work, trial.quad, settings);
+    trial = perform_swap(work, trial.quad, trial.quad, settings);
   }
   if (!trial.possible)
     throw LayoutError("boundary swap of layout edge " + std::to_string(e) + " refused: " + trial.refusal);

@@ -37,18 +37,23 @@ struct SwapTrial {
   /// [side][1] = (r, l, a) on its right.
   std::array<std::array<double, 2>, 2> area{};
   /// A possible swap's result, for measures that need the meshes (the dense metrics AD and L2):
-  /// a layout holding at least the quad after the swap, and the indices in it of the new
-  /// patches [0] = (l, r, b) and [1] = (r, l, a). Only these two patches are meaningful.
+  /// the quad's workspace after the swap (domain/quad_workspace.h: a layout of its own with
+  /// anchors a, b, l, r = 0..3, the quad's two patches and a cap patch closing the meshes), and
+  /// the indices in it of the new patches [0] = (l, r, b) and [1] = (r, l, a). Meaningful: the
+  /// faces of these two patches (positions, provenance, patch ids), their walks in
+  /// `after.patches`, the chains of those walks' halfedges, the four anchors' vertices.
+  /// Numbered in the workspace's own way, not as `layout` (use `quad` for the layout's numbers).
   Layout after;
   std::array<int, 2> after_patches = {-1, -1};
 };
 
-/// Measure the swap of edge e as apply_swap would do it (same tracing and stretching, so the
-/// lengths and areas are those apply_swap produces), leaving `layout` unchanged.
+/// Measure the swap of edge e as apply_swap would do it, leaving `layout` unchanged.
 /// Cost: the combinatorial refusals are checked on `layout` itself; a possible swap is then
-/// carried out on a copy of the whole layout (both meshes) and measured, so that the numbers
-/// are exactly apply_swap's. The copy dominates (about 11 ms per call on the stretched human
-/// pair, 2 x 11.5k vertices); a copy of just the quad's faces would be the next step.
+/// carried out on a copy of just the quad's two patches (make_quad_workspace, both meshes) and
+/// measured there. The workspace is an order-isomorphic copy of the quad, so the tracing, the
+/// make-room splits and the stretching make the same choices as apply_swap on the full layout:
+/// the lengths and areas are apply_swap's (tests/domain/quad_workspace_test.cpp measures the
+/// difference; see the tolerance there), and the refusals are the same.
 /// \pre layout consistent with patch ids set
 /// \throw LayoutError when e is not an edge of the layout
 SwapTrial try_swap(const Layout& layout, int e, const StretchSettings& settings = {});
