@@ -3,12 +3,15 @@
 #include "core/errors.h"
 #include "core/stopwatch.h"
 #include "domain/boundary_swap.h"
+#include "domain/dense_swap_metrics.h"
 #include "domain/layout_measures.h"
 #include "domain/patch_merging.h"
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <queue>
 #include <set>
@@ -38,6 +41,8 @@ class BoundarySwapper {
     }
     const int n_edges = static_cast<int>(layout_.edges.size());
     version_.assign(n_edges, 0);
+    patch_maps_.resize(layout_.patches.size());
+    measured_.assign(layout_.patches.size(), false);
     for (const LayoutEdge& edge : layout_.edges) current_.push_back(anchor_pair(edge.anchors[0], edge.anchors[1]));
     seen_.insert(sorted(current_));
   }
@@ -74,8 +79,20 @@ class BoundarySwapper {
   // What evaluating one edge found (computed in parallel, consumed in edge order).
   struct Evaluation {
     std::optional<SwapKey> key;
-    bool refused = false;  // try_swap refused the swap
+    bool refused = false;       // try_swap refused the swap
+    bool unmeasurable = false;  // ad, l2: the map after the swap could not be measured
   };
+
+  // ad, l2: the map of one patch of the current layout; nullopt when it cannot be measured.
+  using PatchMap = std::optional<PatchMapDistortion>;
+
+  static PatchMap try_measure(const Layout& layout, const std::vector<int>& patches) {
+    try {
+      return measure_patch_map(layout, patches);
+    } catch (const ParamError&) {
+      return std::nullopt;
+    }
+  }
 
   static Configuration sorted(Configuration configuration) {
     std::sort(configuration.begin(), configuration.end());
@@ -138,19 +155,70 @@ class BoundarySwapper {
       evaluation.refused = true;
       return evaluation;
     }
-    evaluation.key = swap_key(settings_.metric, with_trial(q->measures, trial));
+    const SwapMeasures measures = with_trial(q->measures, trial);
+    if (!is_dense_metric(settings_.metric)) {
+      evaluation.key = swap_key(settings_.metric, measures);
+      return evaluation;
+    }
+    // A degenerate LPBD after the swap is refused by swap_key whatever the map does; do not
+    // pay for measuring it.
+    if (!lpbds_valid_after(measures)) return evaluation;
+    const PatchMap after = try_measure(trial.after, {trial.after_patches[0], trial.after_patches[1]});
+    evaluation.unmeasurable = !after || std::isinf(after->e_l2()) || std::isinf(after->e_ang());
+    evaluation.key = swap_key(settings_.metric, measures, dense_measures(q->quad, after));
     return evaluation;
+  }
+
+  // Eq. 3 and 6 of the quad's patches before (from the per-patch cache, left then right) and
+  // after the swap; an unmeasurable map counts as +infinity (swap_key's rule).
+  DenseSwapMeasures dense_measures(const SwapQuad& quad, const PatchMap& after) const {
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    const PatchMap& left = patch_maps_[quad.left_patch];
+    const PatchMap& right = patch_maps_[quad.right_patch];
+    DenseSwapMeasures dense;
+    if (left && right) {
+      PatchMapDistortion before = *left;
+      before += *right;
+      dense.e_ang_before = before.e_ang();
+      dense.e_l2_before = before.e_l2();
+    } else {
+      dense.e_ang_before = dense.e_l2_before = kInfinity;
+    }
+    dense.e_ang_after = after ? after->e_ang() : kInfinity;
+    dense.e_l2_after = after ? after->e_l2() : kInfinity;
+    return dense;
+  }
+
+  // ad, l2: measure (in parallel, into per-patch slots) the current map of every patch of
+  // `edges`' quads that is not cached yet.
+  void measure_patches(const std::vector<int>& edges) {
+    if (!is_dense_metric(settings_.metric)) return;
+    std::vector<int> missing;
+    for (int e : edges) {
+      const std::optional<SwapQuad> quad = swap_quad(layout_, e);
+      if (!quad) continue;
+      for (int p : {quad->left_patch, quad->right_patch}) {
+        if (!measured_[p]) missing.push_back(p);
+      }
+    }
+    std::sort(missing.begin(), missing.end());
+    missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
+    tbb::parallel_for(std::size_t{0}, missing.size(),
+                      [&](std::size_t i) { patch_maps_[missing[i]] = try_measure(layout_, {missing[i]}); });
+    for (int p : missing) measured_[p] = true;
   }
 
   // Evaluate `edges` (independent, so in parallel into per-index slots) and push the
   // candidates in the order given, bumping every edge's version.
   void evaluate_and_push(const std::vector<int>& edges) {
+    measure_patches(edges);
     std::vector<Evaluation> evaluations(edges.size());
     tbb::parallel_for(std::size_t{0}, edges.size(), [&](std::size_t i) { evaluations[i] = evaluate(edges[i]); });
     for (std::size_t i = 0; i < edges.size(); ++i) {
       const int e = edges[i];
       ++version_[e];
       if (evaluations[i].refused) ++result_.refused_swaps;
+      if (evaluations[i].unmeasurable) ++result_.unmeasurable_swaps;
       if (evaluations[i].key) heap_.push({*evaluations[i].key, e, version_[e]});
     }
   }
@@ -183,6 +251,8 @@ class BoundarySwapper {
     if (entry.key.repairs) ++result_.repair_swaps;
     current_ = std::move(next);
     seen_.insert(std::move(next_sorted));
+    // The quad's two patch indices now hold the new patches; every other patch kept its faces.
+    measured_[quad->left_patch] = measured_[quad->right_patch] = false;
     ++version_[e];
     for (int side = 0; side < 2; ++side) {
       lengths_[side][e] = curve_length(layout_, side, e);
@@ -203,6 +273,8 @@ class BoundarySwapper {
   Configuration current_;  // per edge, by edge index
   std::set<Configuration> seen_;
   double threshold_ = 0.0;  // balanced only
+  std::vector<PatchMap> patch_maps_;  // ad, l2: per patch, the current map's measure
+  std::vector<bool> measured_;        // ad, l2: per patch, patch_maps_ is up to date
 };
 
 // Algorithm 2: every edge between two triangles gets eq. 15 (in parallel, the patches do not

@@ -28,6 +28,9 @@ struct DomainOptimizationResult {
   /// plus candidates that became impossible before their turn (apply_swap refused).
   int refused_swaps = 0;
   int repair_swaps = 0;  ///< applied swaps that made an invalid LPBD valid (they go first)
+  /// ad, l2: evaluations whose map after the swap could not be measured (a patch that cannot
+  /// be parameterized, or a collapsed image triangle); such swaps are never candidates.
+  int unmeasurable_swaps = 0;
   /// Candidates skipped because the swap would give back a layout seen before (how the swap
   /// loop is bounded: no configuration twice, so it cannot cycle).
   int repeated_configurations = 0;
@@ -51,6 +54,12 @@ struct DomainOptimizationResult {
 /// curves of each swapped quad; the balanced algorithm restricts candidates to curves whose
 /// E_DL2 is above the threshold computed once after stretching, over the curves with valid
 /// LPBDs, plus the curves with a degenerate LPBD), then merge (Algorithm 2 by eq. 15).
+/// The dense metrics ad and l2 (paper section 4.1) measure the map of the quad's two patches
+/// (domain/dense_swap_metrics.h) on the current layout (cached per patch until a swap changes
+/// the patch) and on try_swap's result; a swap whose after-map cannot be measured is no
+/// candidate, and an unmeasurable current map counts as +infinity (swap_key). Patches with a
+/// degenerate LPBD are measured through patch_polygon's convex fallback, as the map stage
+/// would build them; a degenerate LPBD after the swap is refused before measuring.
 /// Ties in the heap go to the smaller edge index; candidates are evaluated in parallel into
 /// per-edge slots. Deterministic: the same layout and settings give the same result at any
 /// thread count.

@@ -15,10 +15,6 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-constexpr std::array<SwapMetric, 7> kAllMetrics = {SwapMetric::none, SwapMetric::area, SwapMetric::dad,
-                                                   SwapMetric::dl2,  SwapMetric::sdl,  SwapMetric::gar,
-                                                   SwapMetric::balanced};
-
 // ((source - target) / source)^2 of eq. 9, with the 0/0 and x/0 cases made explicit.
 double relative_squared(double source, double target) {
   if (source == 0.0) return target == 0.0 ? 0.0 : kInfinity;
@@ -59,9 +55,20 @@ bool both_valid(const std::array<Lpbd, 2>& triangles) { return triangles[0].vali
 
 }  // namespace
 
+const std::vector<SwapMetric>& all_swap_metrics() {
+  static const std::vector<SwapMetric> metrics = {SwapMetric::none, SwapMetric::ad,  SwapMetric::l2,
+                                                  SwapMetric::area, SwapMetric::dad, SwapMetric::dl2,
+                                                  SwapMetric::sdl,  SwapMetric::gar, SwapMetric::balanced};
+  return metrics;
+}
+
+bool is_dense_metric(SwapMetric metric) { return metric == SwapMetric::ad || metric == SwapMetric::l2; }
+
 std::string_view to_string(SwapMetric metric) {
   switch (metric) {
     case SwapMetric::none: return "none";
+    case SwapMetric::ad: return "ad";
+    case SwapMetric::l2: return "l2";
     case SwapMetric::area: return "area";
     case SwapMetric::dad: return "dad";
     case SwapMetric::dl2: return "dl2";
@@ -75,7 +82,7 @@ std::string_view to_string(SwapMetric metric) {
 
 SwapMetric parse_swap_metric(std::string_view name) {
   std::string names;
-  for (SwapMetric metric : kAllMetrics) {
+  for (SwapMetric metric : all_swap_metrics()) {
     if (to_string(metric) == name) return metric;
     names += names.empty() ? "" : ", ";
     names += to_string(metric);
@@ -182,12 +189,29 @@ bool operator<(const SwapKey& lhs, const SwapKey& rhs) {
   return lhs.value < rhs.value;
 }
 
-std::optional<SwapKey> swap_key(SwapMetric metric, const SwapMeasures& measures) {
+double dense_improvement(double before, double after) {
+  XP_ASSERT_MSG(!std::isnan(before) && !std::isnan(after), "dense energies " << before << ", " << after);
+  if (std::isinf(after)) return -kInfinity;
+  if (std::isinf(before)) return kInfinity;
+  const double difference = before - after;
+  if (std::abs(difference) <= kDenseNoise * std::max({1.0, std::abs(before), std::abs(after)})) return 0.0;
+  return difference;
+}
+
+double ad_metric(const DenseSwapMeasures& dense) { return dense_improvement(dense.e_ang_before, dense.e_ang_after); }
+
+double l2_metric(const DenseSwapMeasures& dense) { return dense_improvement(dense.e_l2_before, dense.e_l2_after); }
+
+std::optional<SwapKey> swap_key(SwapMetric metric, const SwapMeasures& measures,
+                                const std::optional<DenseSwapMeasures>& dense) {
   XP_ASSERT(metric != SwapMetric::none);
+  XP_ASSERT_MSG(!is_dense_metric(metric) || dense, "swap metric " << to_string(metric) << " needs the dense measures");
   if (!lpbds_valid_after(measures)) return std::nullopt;
   SwapKey key;
   key.repairs = !lpbds_valid_before(measures);
   switch (metric) {
+    case SwapMetric::ad: key.value = ad_metric(*dense); break;
+    case SwapMetric::l2: key.value = l2_metric(*dense); break;
     case SwapMetric::area: key.value = area_metric(measures); break;
     case SwapMetric::dad: key.value = dad_metric(measures); break;
     case SwapMetric::dl2: key.value = dl2_metric(measures); break;
@@ -200,6 +224,8 @@ std::optional<SwapKey> swap_key(SwapMetric metric, const SwapMeasures& measures)
     case SwapMetric::none: break;
   }
   XP_ASSERT_MSG(!std::isnan(key.value), "swap metric " << to_string(metric) << " is NaN");
+  // An unmeasurable map after the swap (dense metrics) is refused even for a repair.
+  if (is_dense_metric(metric) && key.value == -kInfinity) return std::nullopt;
   if (!key.repairs && !(key.value > 0.0)) return std::nullopt;
   return key;
 }

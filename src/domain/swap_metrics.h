@@ -1,7 +1,9 @@
 #pragma once
 /// \file
-/// The metrics on Length-Preserved Base Domains that order boundary swaps and patch merges
-/// (paper sections 4.2, 4.3 and 5), as pure functions of plain numbers per side.
+/// The metrics that order boundary swaps and patch merges (paper sections 4 and 5), as pure
+/// functions of plain numbers: the metrics on Length-Preserved Base Domains (sections 4.2, 4.3,
+/// 5) of per-side measures, and the dense-mesh metrics AD and L2 (section 4.1) of the map's
+/// energies, which domain/dense_swap_metrics.h measures.
 ///
 /// Notation (paper Fig. 6): layout edge (a, b) is shared by the patch (a, b, l) on the left of
 /// a -> b and the patch (b, a, r) on its right; the quad's counter-clockwise corners are
@@ -23,10 +25,11 @@
 
 namespace xparam {
 
-/// The metric that orders boundary swaps (paper section 4). The dense-mesh metrics AD and L2
-/// (eq. 3-7) need the map stage and are not here.
+/// The metric that orders boundary swaps (paper section 4).
 enum class SwapMetric {
   none,     ///< no swapping (stretching and merging still run)
+  ad,       ///< angle distortion of the map on the dense meshes, eq. 3-4 (DenseSwapMeasures)
+  l2,       ///< L2-stretch of the map on the dense meshes, eq. 5-7 (DenseSwapMeasures)
   area,     ///< area similarity, eq. 8
   dad,      ///< domain angle distortion, eq. 9
   dl2,      ///< domain L2-stretch, eq. 10-12
@@ -35,8 +38,14 @@ enum class SwapMetric {
   balanced  ///< SDL on the active curves by DL2 and the degenerate ones (section 4.3)
 };
 
-/// The option name of a metric ("none", "area", "dad", "dl2", "sdl", "gar", "balanced").
+/// Every metric, in option order (none, ad, l2, area, dad, dl2, sdl, gar, balanced).
+const std::vector<SwapMetric>& all_swap_metrics();
+
+/// The option name of a metric ("none", "ad", "l2", "area", "dad", "dl2", "sdl", "gar", "balanced").
 std::string_view to_string(SwapMetric metric);
+
+/// True for the metrics measured on the dense meshes (ad, l2), whose keys need DenseSwapMeasures.
+bool is_dense_metric(SwapMetric metric);
 
 /// The metric named `name`; InputError listing the names for anything else.
 SwapMetric parse_swap_metric(std::string_view name);
@@ -128,6 +137,37 @@ bool sdl_refuses(const SwapMeasures& measures);
 /// follow the paper's rule (possibly above pi).
 double gar_metric(const SwapMeasures& measures);
 
+/// The distortion of the cross-parameterization over the quad's two patches before and after
+/// the swap (paper section 4.1; domain/dense_swap_metrics.h measures them): E_ang of eq. 3 and
+/// E_L2 of eq. 6 over the (refined) template faces of the patches (a, b, l), (b, a, r) before
+/// and (l, r, b), (r, l, a) after. +infinity stands for a map that cannot be measured (a
+/// degenerate image triangle, a patch that cannot be parameterized).
+struct DenseSwapMeasures {
+  double e_ang_before = 0.0;  ///< eq. 3 of the curve a-b, >= 0
+  double e_ang_after = 0.0;   ///< eq. 3 of the curve l-r, >= 0
+  double e_l2_before = 1.0;   ///< eq. 6 over the two patches of a-b, >= 1
+  double e_l2_after = 1.0;    ///< eq. 6 over the two patches of l-r, >= 1
+};
+
+/// Size of the rounding noise of a dense energy (sparse solves, point location), relative to
+/// the larger energy and at least absolute (both energies are dimensionless): energies closer
+/// than this are the same map measured twice.
+inline constexpr double kDenseNoise = 1e-9;
+
+/// The improvement `before - after` of two energies where +infinity means "not measurable":
+/// -infinity when `after` is infinite (whatever `before`: a swap to a map that cannot be
+/// measured, or has a collapsed triangle, is never an improvement), +infinity when only
+/// `before` is (any measurable map improves on it), 0 when they differ by at most
+/// kDenseNoise * max(1, before, after) (else a swap between two equally good maps would be a
+/// candidate by rounding), else the difference. Never NaN.
+double dense_improvement(double before, double after);
+
+/// Angle distortion metric, eq. 4: dense_improvement(e_ang_before, e_ang_after).
+double ad_metric(const DenseSwapMeasures& dense);
+
+/// L2-stretch metric, eq. 7: dense_improvement(e_l2_before, e_l2_after).
+double l2_metric(const DenseSwapMeasures& dense);
+
 /// The golden ratio phi of section 4.3.
 inline constexpr double kBalancedPhi = 0.618;
 
@@ -149,9 +189,13 @@ bool operator<(const SwapKey& lhs, const SwapKey& rhs);
 
 /// The key of a swap under `metric` (balanced uses SDL), or nullopt when the swap is not a
 /// candidate: it would leave an invalid LPBD (section 4: "the operation must be prevented"),
-/// SDL refuses it (sdl_refuses, for sdl and balanced), or it repairs nothing and the metric is
-/// not positive (Algorithm 1 inserts only values > 0). \pre metric != none
-std::optional<SwapKey> swap_key(SwapMetric metric, const SwapMeasures& measures);
+/// SDL refuses it (sdl_refuses, for sdl and balanced), it repairs nothing and the metric is
+/// not positive (Algorithm 1 inserts only values > 0), or (ad, l2) the map after the swap is
+/// not measurable (an infinite after-energy: even a repair must not lead to a collapsed map).
+/// `dense` gives the energies of ad and l2 and is ignored by the others.
+/// \pre metric != none; `dense` given when is_dense_metric(metric)
+std::optional<SwapKey> swap_key(SwapMetric metric, const SwapMeasures& measures,
+                                const std::optional<DenseSwapMeasures>& dense = std::nullopt);
 
 /// One side's measures of merging the two patches of layout edge (a, b) into the quad
 /// a-r-b-l (paper section 5, Fig. 9).

@@ -7,7 +7,7 @@
 /// Every patch of both sides is parameterized onto its LPBD polygon (mean-value weights,
 /// param/patch_parameterization.h; a triangle's LPBD from its three curve lengths, an n-gon's
 /// from eq. 2 with the corners' surface angles, a convex fallback where the LPBD is degenerate
-/// or concave, map/patch_extraction.h); Gamma_st is param/domain_map.h's DomainMap between the
+/// or concave, domain/patch_extraction.h); Gamma_st is param/domain_map.h's DomainMap between the
 /// two polygons of a patch (affine for triangles, Wachspress for more corners; a bijection
 /// between convex polygons either way); a point of the template is carried to its patch's
 /// source domain, across to the target domain, located in the target patch's
@@ -18,7 +18,7 @@
 
 #include "core/surface_point.h"
 #include "layout/layout.h"
-#include "map/patch_extraction.h"
+#include "domain/patch_extraction.h"
 #include "param/patch_parameterization.h"
 #include "param/point_locator.h"
 
@@ -60,7 +60,7 @@ class CrossMap {
   MappedPoint map_input_point(const SurfacePoint& point) const;
 
   /// Patches of each side whose LPBD was degenerate or concave and replaced (patch_polygon in
-  /// map/patch_extraction.h).
+  /// domain/patch_extraction.h).
   std::array<int, 2> fallback_polygons() const;
 
   /// Triangles of each side whose parameterization has non-positive signed area. Zero on both

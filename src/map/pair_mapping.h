@@ -12,7 +12,7 @@
 #include "core/surface_point.h"
 #include "domain/base_domain_optimization.h"
 #include "layout/consistent_layout.h"
-#include "map/distortion.h"
+#include "param/distortion.h"
 #include "map/remesh_quality.h"
 
 #include <Eigen/Core>

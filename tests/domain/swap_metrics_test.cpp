@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace xparam {
@@ -29,11 +30,16 @@ SwapSideMeasures rhombus() { return quad(std::sqrt(1.25), 2.0, 1.0); }
 SwapSideMeasures unit_square() { return quad(1.0, kSqrt2, kSqrt2); }
 
 TEST(SwapMetricNames, RoundTripAndUnknownNames) {
-  for (const char* name : {"none", "area", "dad", "dl2", "sdl", "gar", "balanced"}) {
+  for (const char* name : {"none", "ad", "l2", "area", "dad", "dl2", "sdl", "gar", "balanced"}) {
     EXPECT_EQ(to_string(parse_swap_metric(name)), name);
   }
-  EXPECT_THROW(parse_swap_metric("ad"), InputError);  // dense-mesh metric: not on LPBDs
+  EXPECT_EQ(all_swap_metrics().size(), 9u);
+  for (SwapMetric metric : all_swap_metrics()) {
+    EXPECT_EQ(parse_swap_metric(to_string(metric)), metric);
+    EXPECT_EQ(is_dense_metric(metric), metric == SwapMetric::ad || metric == SwapMetric::l2) << to_string(metric);
+  }
   EXPECT_THROW(parse_swap_metric("SDL"), InputError);
+  EXPECT_THROW(parse_swap_metric("L2"), InputError);
   try {
     parse_swap_metric("fast");
   } catch (const InputError& error) {
@@ -194,6 +200,45 @@ TEST(SwapKey, CandidatesRefusalsAndRepairs) {
   EXPECT_TRUE(sdl_refuses(repair_refused));  // 1.5 > 2 * 0.7
   EXPECT_FALSE(swap_key(SwapMetric::sdl, repair_refused).has_value());
   EXPECT_TRUE(swap_key(SwapMetric::gar, repair_refused).has_value());
+}
+
+TEST(DenseSwapKey, EquationsFourAndSevenAndTheUnmeasurableRule) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const DenseSwapMeasures dense = {0.30, 0.10, 1.50, 1.75};  // AD improves by 0.2, L2 worsens by 0.25
+  EXPECT_DOUBLE_EQ(ad_metric(dense), 0.30 - 0.10);
+  EXPECT_DOUBLE_EQ(l2_metric(dense), 1.50 - 1.75);
+  EXPECT_EQ(dense_improvement(kInf, 2.0), kInf);
+  EXPECT_EQ(dense_improvement(2.0, kInf), -kInf);
+  EXPECT_EQ(dense_improvement(kInf, kInf), -kInf);  // never NaN
+  EXPECT_EQ(dense_improvement(1.25, 1.25 * (1 + 1e-12)), 0.0);  // rounding noise is no change
+  EXPECT_EQ(dense_improvement(1.25 * (1 + 1e-12), 1.25), 0.0);
+  EXPECT_GT(dense_improvement(1.25 * (1 + 1e-7), 1.25), 0.0);
+  EXPECT_EQ(dense_improvement(3e-12, 1e-12), 0.0);  // E_ang near zero: absolute noise
+
+  const SwapMeasures good = {rhombus(), unit_square()};  // valid LPBDs before and after
+  const auto ad = swap_key(SwapMetric::ad, good, dense);
+  ASSERT_TRUE(ad.has_value());
+  EXPECT_FALSE(ad->repairs);
+  EXPECT_DOUBLE_EQ(ad->value, 0.2);
+  EXPECT_FALSE(swap_key(SwapMetric::l2, good, dense).has_value());  // not positive
+  // An unmeasurable current map: any measurable swap is an improvement.
+  const auto from_broken = swap_key(SwapMetric::l2, good, DenseSwapMeasures{kInf, 0.1, kInf, 1.2});
+  ASSERT_TRUE(from_broken.has_value());
+  EXPECT_EQ(from_broken->value, kInf);
+  // An unmeasurable map after the swap is refused, even for a repair.
+  SwapMeasures repair = {quad(1.0, 3.0, 1.9), unit_square()};
+  const DenseSwapMeasures to_broken = {0.3, kInf, 1.5, kInf};
+  EXPECT_FALSE(swap_key(SwapMetric::ad, good, to_broken).has_value());
+  EXPECT_FALSE(swap_key(SwapMetric::l2, repair, to_broken).has_value());
+  // A repair that worsens the map is still a candidate, first in the heap.
+  const auto repair_key = swap_key(SwapMetric::l2, repair, dense);
+  ASSERT_TRUE(repair_key.has_value());
+  EXPECT_TRUE(repair_key->repairs);
+  EXPECT_DOUBLE_EQ(repair_key->value, -0.25);
+  // A degenerate LPBD after the swap is refused whatever the map: l-r = 2.5 > 1 + 1.
+  SwapMeasures breaks = {unit_square(), unit_square()};
+  breaks[1].lr = 2.5;
+  EXPECT_FALSE(swap_key(SwapMetric::ad, breaks, dense).has_value());
 }
 
 // A square quad on both sides with right surface angles, a-b given per side.

@@ -6,7 +6,7 @@
 #include "domain/patch_merging.h"
 #include "layout/layout_check.h"
 #include "layout/layout_fixtures.h"
-#include "map/patch_extraction.h"
+#include "domain/patch_extraction.h"
 #include "param/convex_polygon.h"
 #include "support/test_data.h"
 

@@ -47,6 +47,23 @@ PatchPolygon patch_polygon(const std::vector<double>& curve_lengths, const std::
 /// Length of layout edge `e`'s chain on `side`, in 3-D units.
 double chain_length(const Layout& layout, int side, int e);
 
+/// One patch of one side as a plain disk patch, in local indices.
+struct ExtractedPatch {
+  DiskPatch patch;                 ///< polygon = the patch's LPBD (or its fallback)
+  Lpbd lpbd;                       ///< the LPBD computed from the curve lengths
+  bool fallback = false;           ///< true when patch.polygon is patch_polygon's fallback, not lpbd.corners
+  std::vector<int> local_to_mesh;  ///< local vertex id -> mesh vertex index
+  std::vector<int> triangle_faces; ///< local triangle -> mesh face index
+};
+
+/// Cut patch p of side `side` out of a layout, as extract_patches does for every patch: its
+/// triangles are the mesh faces with patch id p (in face order, local vertex ids by first
+/// appearance), its boundary the chains of its walk. Reads only those faces, those chains and
+/// the patch's anchors (and, for n > 3 sides, the chains at its anchors for the surface
+/// angles), so it also works on a layout where nothing else is meaningful (SwapTrial::after).
+/// \pre p a patch of the layout whose faces carry patch id p on `side`
+ExtractedPatch extract_patch(const Layout& layout, int side, int p);
+
 /// Cut side `side` of a layout into disk patches. The boundary loop of patch p is the
 /// concatenation of the chains of its layout halfedges (patch on their left, so
 /// counter-clockwise), corner j at the start of halfedge j. The polygon comes from

@@ -32,6 +32,23 @@ struct DistortionSummary {
   double stretch_max_sv = 1.0;  ///< mean over faces of max(sigma1, 1 / sigma2) of the map f -> Gamma(f)
 };
 
+/// The sums eq. 3 and eq. 6 are made of, over a set of faces. Sums over disjoint face sets add
+/// up (operator+=), so the global values of a union follow from its parts (the dense swap
+/// metrics measure two patches at a time this way).
+struct DistortionSums {
+  int faces = 0;              ///< faces summed
+  double source_area = 0.0;   ///< sum A(f), 3-D units squared
+  double image_area = 0.0;    ///< sum A(Gamma f)
+  double l2_area = 0.0;       ///< sum L2(f)^2 A(f) (eq. 5 and 6); +inf with a degenerate image
+  double angle = 0.0;         ///< sum over faces of (1/3) sum_j ((a_j - a'_j) / a_j)^2 (eq. 3)
+  double max_stretch = 0.0;   ///< sum over faces of max(sigma1, 1 / sigma2)
+  DistortionSums& operator+=(const DistortionSums& other);
+};
+
+/// The global values of `sums`: E_L2 = sqrt(image_area * l2_area) / source_area (eq. 6, +inf
+/// when l2_area is), E_ang = angle / faces (eq. 3), the mean max stretch; NaN for no faces.
+DistortionSummary summarize(const DistortionSums& sums);
+
 /// Per-face and global distortion of a map.
 struct DistortionResult {
   std::vector<double> face_l2_stretch;  ///< #F eq. 5 L2(f); +inf for a degenerate image
@@ -40,6 +57,7 @@ struct DistortionResult {
   std::vector<double>
       face_max_stretch;   ///< #F max(sigma1, 1 / sigma2) of f -> Gamma(f); +inf for a degenerate image
   DistortionSummary all;  ///< over every face: +inf as soon as one image is degenerate
+  DistortionSums all_sums;  ///< the sums `all` comes from (summed in face order)
   DistortionSummary nondegenerate;  ///< over the faces whose image is not degenerate
   int degenerate_faces = 0;         ///< faces whose image is degenerate (infinite stretch)
   DistortionSettings settings;      ///< the settings used

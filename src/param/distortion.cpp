@@ -1,4 +1,4 @@
-#include "map/distortion.h"
+#include "param/distortion.h"
 
 #include "core/errors.h"
 
@@ -86,33 +86,46 @@ FaceMeasure measure_face(const std::array<Eigen::Vector3d, 3>& p, const std::arr
   return m;
 }
 
-// Global values over the faces selected by `use`, summed in face order.
+// The sums over the faces selected by `use`, in face order.
 template <typename Use>
-DistortionSummary summarize(const std::vector<FaceMeasure>& measures, Use use) {
-  double source_area = 0.0, image_area = 0.0, weighted_l2 = 0.0, angle = 0.0, stretch = 0.0;
-  int count = 0;
+DistortionSums sum_measures(const std::vector<FaceMeasure>& measures, Use use) {
+  DistortionSums sums;
   for (const FaceMeasure& m : measures) {
     if (!use(m)) continue;
-    source_area += m.source_area;
-    image_area += m.image_area;
-    weighted_l2 += m.l2 * m.l2 * m.source_area;
-    angle += m.angle;
-    stretch += m.max_stretch;
-    ++count;
+    sums.source_area += m.source_area;
+    sums.image_area += m.image_area;
+    sums.l2_area += m.l2 * m.l2 * m.source_area;
+    sums.angle += m.angle;
+    sums.max_stretch += m.max_stretch;
+    ++sums.faces;
   }
+  return sums;
+}
+
+}  // namespace
+
+DistortionSums& DistortionSums::operator+=(const DistortionSums& other) {
+  faces += other.faces;
+  source_area += other.source_area;
+  image_area += other.image_area;
+  l2_area += other.l2_area;
+  angle += other.angle;
+  max_stretch += other.max_stretch;
+  return *this;
+}
+
+DistortionSummary summarize(const DistortionSums& sums) {
   DistortionSummary summary;
-  if (count == 0) {
+  if (sums.faces == 0) {
     summary.e_l2 = summary.e_ang = summary.stretch_max_sv = std::numeric_limits<double>::quiet_NaN();
     return summary;
   }
   // One degenerate image makes eq. 6 infinite (also when every image area is zero: no 0 * inf).
-  summary.e_l2 = std::isinf(weighted_l2) ? kInfinity : std::sqrt(image_area * weighted_l2) / source_area;
-  summary.e_ang = angle / count;
-  summary.stretch_max_sv = stretch / count;
+  summary.e_l2 = std::isinf(sums.l2_area) ? kInfinity : std::sqrt(sums.image_area * sums.l2_area) / sums.source_area;
+  summary.e_ang = sums.angle / sums.faces;
+  summary.stretch_max_sv = sums.max_stretch / sums.faces;
   return summary;
 }
-
-}  // namespace
 
 DistortionResult measure_distortion(const std::vector<Eigen::Vector3d>& source_positions,
                                     const std::vector<Eigen::Vector3d>& image_positions,
@@ -157,8 +170,9 @@ DistortionResult measure_distortion(const std::vector<Eigen::Vector3d>& source_p
     result.face_max_stretch.push_back(m.max_stretch);
     result.degenerate_faces += m.degenerate_image;
   }
-  result.all = summarize(measures, [](const FaceMeasure&) { return true; });
-  result.nondegenerate = summarize(measures, [](const FaceMeasure& m) { return !m.degenerate_image; });
+  result.all_sums = sum_measures(measures, [](const FaceMeasure&) { return true; });
+  result.all = summarize(result.all_sums);
+  result.nondegenerate = summarize(sum_measures(measures, [](const FaceMeasure& m) { return !m.degenerate_image; }));
   return result;
 }
 

@@ -1,4 +1,4 @@
-#include "map/patch_extraction.h"
+#include "domain/patch_extraction.h"
 
 #include "core/errors.h"
 #include "domain/patch_merging.h"
@@ -76,6 +76,66 @@ double chain_length(const Layout& layout, int side, int e) {
   return polyline_length(layout.sides[side].mesh, layout.sides[side].chains[e]);
 }
 
+namespace {
+
+// Patch p from its faces (mesh face indices in increasing order); `local` is #V scratch, all
+// -1, and is left all -1.
+ExtractedPatch build_patch(const Layout& layout, int side, int p, std::vector<int> faces, std::vector<int>& local) {
+  const Mesh& mesh = layout.sides[side].mesh;
+  const std::vector<int>& walk = layout.patches[p];
+  ExtractedPatch result;
+  result.triangle_faces = std::move(faces);
+  DiskPatch& patch = result.patch;
+  patch.name = "side " + std::to_string(side) + " patch " + std::to_string(p);
+  std::vector<int>& to_mesh = result.local_to_mesh;
+  auto local_id = [&](VertexHandle v) {
+    if (local[v.idx()] < 0) {
+      local[v.idx()] = static_cast<int>(to_mesh.size());
+      to_mesh.push_back(v.idx());
+      patch.positions.push_back(position(mesh, v));
+    }
+    return local[v.idx()];
+  };
+  // Local ids in order of first appearance over the faces, so they depend on nothing but the mesh.
+  for (int f : result.triangle_faces) {
+    std::array<int, 3> corners{};
+    int k = 0;
+    for (VertexHandle v : mesh.fv_range(mesh.face_handle(f))) corners[k++] = local_id(v);
+    patch.triangles.push_back(corners);
+  }
+  // Boundary: the chains of the patch's walk, each without its last vertex (the next one's first).
+  std::vector<double> curves, chords;
+  for (int h : walk) {
+    patch.corner_positions.push_back(static_cast<int>(patch.boundary_loop.size()));
+    const std::vector<VertexHandle> chain = halfedge_chain(layout, side, h);
+    for (size_t i = 0; i + 1 < chain.size(); ++i) patch.boundary_loop.push_back(local_id(chain[i]));
+    curves.push_back(polyline_length(mesh, chain));
+    chords.push_back((position(mesh, chain.back()) - position(mesh, chain.front())).norm());
+  }
+  // A triangle's LPBD needs no surface angles (and they read the chains around its anchors).
+  const std::vector<double> angles =
+      walk.size() == 3 ? std::vector<double>(3, 0.0) : corner_surface_angles(layout, side, p);
+  PatchPolygon polygon = patch_polygon(curves, angles, chords);
+  result.fallback = polygon.fallback;
+  result.lpbd = std::move(polygon.lpbd);
+  patch.polygon = std::move(polygon.corners);
+  for (int v : to_mesh) local[v] = -1;
+  return result;
+}
+
+}  // namespace
+
+ExtractedPatch extract_patch(const Layout& layout, int side, int p) {
+  XP_ASSERT_MSG(p >= 0 && p < static_cast<int>(layout.patches.size()), "patch " << p << " does not exist");
+  const Mesh& mesh = layout.sides[side].mesh;
+  std::vector<int> faces;
+  for (FaceHandle f : mesh.faces()) {
+    if (patch_of(mesh, f) == p) faces.push_back(f.idx());
+  }
+  std::vector<int> local(mesh.n_vertices(), -1);
+  return build_patch(layout, side, p, std::move(faces), local);
+}
+
 SidePatches extract_patches(const Layout& layout, int side) {
   const Mesh& mesh = layout.sides[side].mesh;
   const int n_patches = static_cast<int>(layout.patches.size());
@@ -86,48 +146,24 @@ SidePatches extract_patches(const Layout& layout, int side) {
   result.triangle_faces.resize(n_patches);
   result.face_corners.assign(mesh.n_faces(), {-1, -1, -1});
 
-  // Local ids in order of first appearance over the faces, so they do not depend on anything
-  // but the mesh: one scan over faces, one per-patch map from mesh vertex to local id.
+  // One scan over the faces for every patch's face list.
+  std::vector<std::vector<int>> faces(n_patches);
   for (FaceHandle f : mesh.faces()) {
     const int p = patch_of(mesh, f);
     XP_ASSERT_MSG(p >= 0 && p < n_patches, "side " << side << " face " << f.idx() << " has patch " << p);
-    result.triangle_faces[p].push_back(f.idx());
+    faces[p].push_back(f.idx());
   }
   std::vector<int> local(mesh.n_vertices(), -1);
   for (int p = 0; p < n_patches; ++p) {
-    const std::vector<int>& walk = layout.patches[p];
-    DiskPatch& patch = result.patches[p];
-    patch.name = "side " + std::to_string(side) + " patch " + std::to_string(p);
-    std::vector<int>& to_mesh = result.local_to_mesh[p];
-    auto local_id = [&](VertexHandle v) {
-      if (local[v.idx()] < 0) {
-        local[v.idx()] = static_cast<int>(to_mesh.size());
-        to_mesh.push_back(v.idx());
-        patch.positions.push_back(position(mesh, v));
-      }
-      return local[v.idx()];
-    };
-    for (int f : result.triangle_faces[p]) {
-      std::array<int, 3> corners{};
-      int k = 0;
-      for (VertexHandle v : mesh.fv_range(mesh.face_handle(f))) corners[k++] = local_id(v);
-      patch.triangles.push_back(corners);
-      result.face_corners[f] = corners;
+    ExtractedPatch extracted = build_patch(layout, side, p, std::move(faces[p]), local);
+    for (std::size_t t = 0; t < extracted.triangle_faces.size(); ++t) {
+      result.face_corners[extracted.triangle_faces[t]] = extracted.patch.triangles[t];
     }
-    // Boundary: the chains of the patch's walk, each without its last vertex (the next one's first).
-    std::vector<double> curves, chords;
-    for (int h : walk) {
-      patch.corner_positions.push_back(static_cast<int>(patch.boundary_loop.size()));
-      const std::vector<VertexHandle> chain = halfedge_chain(layout, side, h);
-      for (size_t i = 0; i + 1 < chain.size(); ++i) patch.boundary_loop.push_back(local_id(chain[i]));
-      curves.push_back(polyline_length(mesh, chain));
-      chords.push_back((position(mesh, chain.back()) - position(mesh, chain.front())).norm());
-    }
-    PatchPolygon polygon = patch_polygon(curves, corner_surface_angles(layout, side, p), chords);
-    if (polygon.fallback) ++result.fallback_polygons;
-    result.lpbds[p] = std::move(polygon.lpbd);
-    patch.polygon = std::move(polygon.corners);
-    for (int v : to_mesh) local[v] = -1;
+    if (extracted.fallback) ++result.fallback_polygons;
+    result.patches[p] = std::move(extracted.patch);
+    result.lpbds[p] = std::move(extracted.lpbd);
+    result.local_to_mesh[p] = std::move(extracted.local_to_mesh);
+    result.triangle_faces[p] = std::move(extracted.triangle_faces);
   }
   return result;
 }

@@ -1,4 +1,4 @@
-#include "map/distortion.h"
+#include "param/distortion.h"
 
 #include "core/errors.h"
 #include "core/mesh.h"
