@@ -95,6 +95,20 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   XP_ASSERT(layout.sides[0].mesh.n_vertices() >= source.n_vertices());
   std::vector<MappedPoint> images(n_vertices);
   tbb::parallel_for(0, n_vertices, [&](int v) { images[v] = cross.map_vertex(v); });
+  TemplateWarp warp;
+  if (settings.untangle) {
+    Stopwatch untangle_watch;
+    std::vector<SurfacePoint> anchor_points;
+    for (const PlacedAnchor& anchor : result.anchors[0].anchors) anchor_points.push_back(anchor.input_point);
+    UntangleResult untangled = untangle_remesh(
+        source, std::move(images), [&](const SurfacePoint& p) { return cross.map_input_point(p); }, target,
+        anchor_points, settings.untangling);
+    images = std::move(untangled.images);
+    warp = std::move(untangled.warp);
+    result.untangling = {untangled.flipped_before, untangled.moved_vertices, untangled.max_move,
+                         untangled.mean_move,      static_cast<int>(warp.moves.size()), untangled.rounds};
+    result.seconds.untangle = untangle_watch.lap();
+  }
   result.correspondence.resize(n_vertices);
   result.remesh_vertices.resize(n_vertices, 3);
   for (int v = 0; v < n_vertices; ++v) {
@@ -108,7 +122,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     mapped.name = curve.name;
     mapped.closed = curve.closed;
     for (const SurfacePoint& point : curve.points) {
-      const MappedPoint image = cross.map_input_point(point);
+      const MappedPoint image = cross.map_input_point(warp(point));
       mapped.points.push_back(image.on_input);
       mapped.positions.push_back(image.position);
       result.max_clamp_distance = std::max(result.max_clamp_distance, image.clamp_distance);

@@ -14,6 +14,7 @@
 #include "layout/consistent_layout.h"
 #include "param/distortion.h"
 #include "map/remesh_quality.h"
+#include "map/remesh_untangling.h"
 
 #include <Eigen/Core>
 
@@ -29,6 +30,9 @@ struct PairSettings {
   PlacementSettings placement;         ///< how anchors given as positions are put on the meshes
   ConsistentLayoutSettings layout;     ///< the pre-step (layout/consistent_layout.h)
   DomainOptimizationSettings optimization;  ///< stretching, swapping, merging (domain/base_domain_optimization.h)
+  /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
+  bool untangle = true;
+  UntangleSettings untangling;  ///< options of that step
 };
 
 /// Wall-clock seconds of each stage of map_pair (not deterministic, never compared).
@@ -38,6 +42,7 @@ struct PairSeconds {
   double optimize = 0.0;      ///< base-domain optimization (paper sections 4-5)
   double parameterize = 0.0;  ///< LPBDs and patch parameterizations of both sides
   double compose = 0.0;       ///< mapping every template vertex and curve point
+  double untangle = 0.0;      ///< untangling the remesh (inside compose)
   double metrics = 0.0;       ///< distortion and remesh quality
   double total = 0.0;         ///< all of map_pair
 };
@@ -50,7 +55,19 @@ struct MappedCurve {
   bool closed = false;
 };
 
-/// Everything one template/target pair yields.
+/// What untangling did to the remesh (map/remesh_untangling.h); zeros when it was off.
+struct UntangleSummary {
+  int flipped_before = 0;  ///< flipped remesh faces of Gamma itself
+  int moved_vertices = 0;  ///< template vertices with phi(x_i) != x_i
+  double max_move = 0.0;   ///< largest |phi(x_i) - x_i|, template units
+  double mean_move = 0.0;  ///< mean |phi(x_i) - x_i| over the moved vertices, template units
+  int star_moves = 0;      ///< star moves composing phi
+  int rounds = 0;          ///< Gauss-Seidel rounds run
+};
+
+/// Everything one template/target pair yields. With untangling on, the map is Gamma . phi
+/// (phi a homeomorphism of the template, map/remesh_untangling.h): the correspondence, remesh,
+/// curves and metrics all describe it.
 struct PairMapping {
   /// #template input vertices: where each lands on the target's input mesh (face +
   /// barycentrics in the fv order of the loaded target mesh).
@@ -59,6 +76,7 @@ struct PairMapping {
   std::vector<int> face_patch;       ///< #template input faces: layout patch holding most of the face's area
   DistortionResult distortion;       ///< per face and global L2-stretch and angle distortion (eq. 3, 5, 6)
   RemeshQualityResult quality;       ///< flipped faces and area ratio of the remesh on the target
+  UntangleSummary untangling;        ///< how far the remesh's vertices were slid to unfold it
   std::vector<MappedCurve> curves;   ///< the template's feature curves on the target, in input order
   ConsistentLayoutResult layout;     ///< the optimized layout on both (refined) meshes, for exports and counts
   DomainOptimizationResult optimization;  ///< what the base-domain optimization did (swaps, merges, seconds)

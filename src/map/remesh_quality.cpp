@@ -12,7 +12,8 @@
 namespace xparam {
 namespace {
 
-// Area-weighted vertex normals: the sum of the unnormalized normals of the incident faces.
+// Unit area-weighted vertex normals (the normalized sum of the unnormalized normals of the
+// incident faces) and the total area.
 std::vector<Eigen::Vector3d> vertex_normals(const Mesh& target, double& total_area) {
   std::vector<Eigen::Vector3d> normals(target.n_vertices(), Eigen::Vector3d::Zero());
   total_area = 0.0;
@@ -28,6 +29,7 @@ std::vector<Eigen::Vector3d> vertex_normals(const Mesh& target, double& total_ar
     total_area += 0.5 * normal.norm();
     for (int id : ids) normals[id] += normal;
   }
+  for (Eigen::Vector3d& normal : normals) normal.normalize();
   return normals;
 }
 
@@ -36,9 +38,7 @@ Eigen::Vector3d interpolated_normal(const Mesh& target, const std::vector<Eigen:
                                     const SurfacePoint& point) {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   int corner = 0;
-  for (VertexHandle v : target.fv_range(target.face_handle(point.face))) {
-    normal += point.bary[corner++] * normals[v.idx()].normalized();
-  }
+  for (VertexHandle v : target.fv_range(target.face_handle(point.face))) normal += point.bary[corner++] * normals[v.idx()];
   const double length = normal.norm();
   return length > 0.0 ? Eigen::Vector3d(normal / length) : Eigen::Vector3d::Zero();
 }
@@ -85,6 +85,17 @@ int common_face(const Mesh& target, const std::array<const SurfacePoint*, 3>& co
 
 }  // namespace
 
+RemeshReference::RemeshReference(const Mesh& target) : target_(&target) {
+  vertex_normals_ = vertex_normals(target, target_area_);
+}
+
+Eigen::Vector3d RemeshReference::normal(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c) const {
+  const int shared = common_face(*target_, {&a, &b, &c});
+  if (shared >= 0) return to_eigen(target_->calc_face_normal(target_->face_handle(shared)));
+  return interpolated_normal(*target_, vertex_normals_, a) + interpolated_normal(*target_, vertex_normals_, b) +
+         interpolated_normal(*target_, vertex_normals_, c);
+}
+
 RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>& faces,
                                            const std::vector<Eigen::Vector3d>& positions,
                                            const std::vector<SurfacePoint>& locations, const Mesh& target) {
@@ -102,7 +113,8 @@ RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>
   }
 
   RemeshQualityResult result;
-  const std::vector<Eigen::Vector3d> normals = vertex_normals(target, result.target_area);
+  const RemeshReference reference(target);
+  result.target_area = reference.target_area();
 
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const auto& t = faces[f];
@@ -120,14 +132,9 @@ RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>
       ++result.degenerate_faces;
       continue;
     }
-    Eigen::Vector3d reference = Eigen::Vector3d::Zero();
-    const int shared = common_face(target, {&locations[t[0]], &locations[t[1]], &locations[t[2]]});
-    if (shared >= 0) {
-      reference = to_eigen(target.calc_face_normal(target.face_handle(shared)));
-    } else {
-      for (int v : t) reference += interpolated_normal(target, normals, locations[v]);
+    if (normal.dot(reference.normal(locations[t[0]], locations[t[1]], locations[t[2]])) < 0.0) {
+      result.flipped_faces.push_back(static_cast<int>(f));
     }
-    if (normal.dot(reference) < 0.0) result.flipped_faces.push_back(static_cast<int>(f));
   }
   result.area_ratio = result.remesh_area / result.target_area;
   return result;

@@ -23,6 +23,27 @@ struct RemeshQualityResult {
   double area_ratio = 0.0;   ///< remesh_area / target_area (1 when the remesh covers the target once)
 };
 
+/// The reference normals of measure_remesh_quality, with the target's vertex normals computed
+/// once, for callers that test single faces (map/remesh_untangling.h).
+class RemeshReference {
+ public:
+  /// \param target the surface the remesh lies on; must outlive this object
+  explicit RemeshReference(const Mesh& target);
+
+  /// Reference normal (not normalized; zero where it vanishes) of a remesh face whose corners
+  /// lie at `a`, `b`, `c` on the target (see measure_remesh_quality).
+  /// \pre every face index valid
+  Eigen::Vector3d normal(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c) const;
+
+  /// Total area of the target, target units^2.
+  double target_area() const { return target_area_; }
+
+ private:
+  const Mesh* target_;
+  std::vector<Eigen::Vector3d> vertex_normals_;  ///< #target V, unit area-weighted vertex normals
+  double target_area_ = 0.0;
+};
+
 /// Compare a remesh with the target surface it lies on.
 ///
 /// Reference normal of remesh face (a, b, c): when its three corners lie on one common target

@@ -1,0 +1,96 @@
+#pragma once
+/// \file
+/// Untangling the remesh (ARCHITECTURE step 9): the remesh puts template vertex i at Gamma(x_i)
+/// and joins the images by straight chords, so where the composed map varies fast (creases,
+/// protrusions) a coarse template triangle's three images can make a folded chord triangle even
+/// though Gamma itself is bijective. This replaces Gamma by Gamma . phi, phi a piecewise-linear
+/// homeomorphism of the template that slides a few template vertices inside their own star:
+/// Gamma . phi is still a bijection, and the remesh then samples it at phi(x_i).
+///
+/// phi is a sequence of star moves. A star move of vertex v flattens v's star (its one-ring,
+/// angles at v scaled to sum to 2 pi, spoke lengths kept: one affine map per star triangle),
+/// then re-fans the flat polygon from a new centre inside its kernel (every triangle
+/// (centre, v_j, v_j+1) positive, which is what makes the move a homeomorphism of the star that
+/// fixes its boundary). The vertices of flipped remesh faces are visited in index order, a few
+/// Gauss-Seidel rounds; a move is kept when it creates no flipped face around the vertices it
+/// changes and removes some, or leaves them clearly less folded.
+
+#include "core/mesh.h"
+#include "core/surface_point.h"
+#include "map/cross_map.h"
+#include "map/remesh_quality.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <functional>
+#include <vector>
+
+namespace xparam {
+
+/// Options of untangle_remesh.
+struct UntangleSettings {
+  int rounds = 8;  ///< Gauss-Seidel sweeps over the vertices of flipped faces (at most)
+  /// Directions searched from the current centre: the spokes, the ring edges' midpoints and
+  /// this many evenly spaced angles.
+  int extra_directions = 16;
+  /// Steps along each direction, as fractions of the distance to the kernel's boundary; the
+  /// largest keeps every star triangle at least (1 - it) of its area at the current centre.
+  std::vector<double> steps = {0.1, 0.2, 0.35, 0.5, 0.65, 0.8};
+  /// A move that removes no flip is still kept when it raises the worst face quality around
+  /// it (signed area over the template's, scaled to the target's total) by this much; it lets
+  /// two neighbours unfold a face together that neither can alone.
+  double min_gain = 0.01;
+};
+
+/// One star move of phi: vertex `center`'s flattened star re-fanned from `from` to `to`.
+struct StarMove {
+  int center = -1;                    ///< template input vertex
+  std::vector<int> faces;             ///< the star's faces (v, v_j, v_j+1), counter-clockwise
+  std::vector<int> center_slot;       ///< per face: the centre's corner in the face's fv order
+  std::vector<Eigen::Vector2d> ring;  ///< flattened v_j (centre at the origin), same order as faces
+  Eigen::Vector2d from = Eigen::Vector2d::Zero();  ///< fan centre before the move (in the kernel)
+  Eigen::Vector2d to = Eigen::Vector2d::Zero();    ///< fan centre after the move (in the kernel)
+};
+
+/// phi: star moves applied in order (the composition of homeomorphisms of the template).
+struct TemplateWarp {
+  std::vector<StarMove> moves;
+
+  /// phi(point) for a point of the template input mesh (face + barycentrics in fv order).
+  SurfacePoint operator()(const SurfacePoint& point) const;
+};
+
+/// What untangle_remesh did.
+struct UntangleResult {
+  TemplateWarp warp;                          ///< phi
+  std::vector<SurfacePoint> template_points;  ///< #V: phi(x_i) on the template input mesh
+  std::vector<MappedPoint> images;            ///< #V: Gamma(phi(x_i)) (the input images where unmoved)
+  int flipped_before = 0;                     ///< flipped remesh faces of Gamma
+  int flipped_after = 0;                      ///< flipped remesh faces of Gamma . phi
+  int moved_vertices = 0;                     ///< template vertices with phi(x_i) != x_i
+  double max_move = 0.0;   ///< largest |phi(x_i) - x_i|, template units
+  double mean_move = 0.0;  ///< mean |phi(x_i) - x_i| over the moved vertices, template units
+  int rounds = 0;          ///< Gauss-Seidel rounds run
+  double seconds = 0.0;    ///< wall clock (not deterministic)
+  UntangleSettings settings;
+};
+
+/// Gamma: where a point of the template's input surface lands on the target.
+using SurfaceMap = std::function<MappedPoint(const SurfacePoint&)>;
+
+/// Slide template vertices of flipped remesh faces inside their stars until the remesh of
+/// Gamma . phi has no flipped face (measure_remesh_quality's test) or no move helps.
+/// Vertices whose open star holds an anchor (`fixed_points`) never move, nor do vertices with
+/// a boundary edge or a star that cannot be flattened (a scaled angle >= pi).
+/// \param source        the template input mesh (closed, oriented)
+/// \param images        #V: Gamma(x_i)
+/// \param gamma         Gamma, thread-safe (called in parallel)
+/// \param target        the target input mesh the images lie on
+/// \param fixed_points  template points phi must not move (anchors)
+/// \throw ParamError when `images` does not have one entry per template vertex
+UntangleResult untangle_remesh(const Mesh& source, std::vector<MappedPoint> images, const SurfaceMap& gamma,
+                               const Mesh& target, const std::vector<SurfacePoint>& fixed_points,
+                               const UntangleSettings& settings = {});
+
+}  // namespace xparam
