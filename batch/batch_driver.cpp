@@ -115,6 +115,7 @@ std::string batch_options_json(const PairSettings& settings) {
   options["optimization"]["metric"] = std::string(to_string(settings.optimization.metric));
   options["optimization"]["merge"] = settings.optimization.merge;
   options["optimization"]["contact_clearance"] = settings.optimization.stretching.contact_clearance;
+  options["untangle"] = settings.untangle;
   return options.dump();
 }
 

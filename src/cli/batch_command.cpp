@@ -1,6 +1,6 @@
 // `xparam batch`: one template against a folder (or manifest) of targets, into one archive.
 #include "cli/commands.h"
-#include "cli/optimization_options.h"
+#include "cli/map_options.h"
 
 #include "batch/batch_driver.h"
 #include "batch/batch_plan.h"
@@ -40,7 +40,7 @@ struct BatchOptions {
   std::string summary;
   bool keep_parts = false;
   double checkpoint_seconds = 30.0;
-  DomainOptimizationSettings optimization;
+  PairSettings map;  ///< --optimize, --merge, --no-stretch, --untangle
 };
 
 [[noreturn]] void exit_with(int code, const std::string& message) {
@@ -168,7 +168,7 @@ int run_command(const BatchOptions& options) {
     settings.resume = options.resume;
     settings.keep_parts = options.keep_parts;
     settings.checkpoint_seconds = options.checkpoint_seconds;
-    settings.pair.optimization = options.optimization;
+    settings.pair = options.map;
     ProgressPrinter printer;
     const BatchSummary summary = run_batch(prepared, plan, settings, [&](const BatchProgress& p) { printer(p); });
     if (!options.summary.empty()) write_summary(summary, options.summary);
@@ -215,7 +215,7 @@ void add_batch_command(CLI::App& app) {
       ->capture_default_str();
   batch->add_flag("--dry-run", options->dry_run, "Check every input and print the plan; write nothing");
   batch->add_option("--summary", options->summary, "Write a JSON summary (schemas/summary.schema.json)");
-  add_optimization_options(*batch, options->optimization);
+  add_map_options(*batch, options->map);
   batch->add_flag("--keep-parts", options->keep_parts, "Keep OUT.parts after the final assembly");
   batch->add_option("--checkpoint-seconds", options->checkpoint_seconds,
                     "Re-assemble OUT from the committed targets at most this often while running (s)")

@@ -1,7 +1,7 @@
 // `xparam pair`: cross-parameterize one template against one target and write the results.
 #include "batch/file_order.h"
 #include "cli/commands.h"
-#include "cli/optimization_options.h"
+#include "cli/map_options.h"
 #include "cli/pair_outputs.h"
 #include "io/anchor_reader.h"
 #include "io/curve_reader.h"
@@ -22,7 +22,7 @@ struct PairOptions {
   std::string curves;
   std::string out;
   bool quiet = false;
-  DomainOptimizationSettings optimization;
+  PairSettings map;  ///< --optimize, --merge, --no-stretch, --untangle
 };
 
 void run_pair(const PairOptions& options) {
@@ -42,8 +42,7 @@ void run_pair(const PairOptions& options) {
   if (!options.curves.empty())
     curves = validate_curves(curves_in_mesh_order(read_curves(options.curves), source.file_order), source.mesh);
 
-  PairSettings settings;
-  settings.optimization = options.optimization;
+  const PairSettings& settings = options.map;
   const PairMapping mapping = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, curves, settings, progress);
   progress("outputs");
   write_pair_outputs(options.out, source, target, mapping);
@@ -76,7 +75,7 @@ void add_pair_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("--out,-o", options->out, "Output directory")->required();
   command->add_flag("--quiet,-q", options->quiet, "No progress on stderr");
-  add_optimization_options(*command, options->optimization);
+  add_map_options(*command, options->map);
   command->callback([options] { run_pair(*options); });
 }
 

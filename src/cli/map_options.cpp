@@ -1,24 +1,28 @@
-#include "cli/optimization_options.h"
+#include "cli/map_options.h"
 
 #include <string>
 #include <vector>
 
 namespace xparam::cli {
 
-void add_optimization_options(CLI::App& command, DomainOptimizationSettings& settings) {
+void add_map_options(CLI::App& command, PairSettings& settings) {
+  DomainOptimizationSettings& optimization = settings.optimization;
   std::vector<std::string> names;
   for (SwapMetric metric : all_swap_metrics()) names.emplace_back(to_string(metric));
   command
       .add_option_function<std::string>(
-          "--optimize", [&settings](const std::string& name) { settings.metric = parse_swap_metric(name); },
+          "--optimize", [&optimization](const std::string& name) { optimization.metric = parse_swap_metric(name); },
           "Metric of the boundary swapping (paper section 4): none; ad or l2 (the map's angle distortion or "
           "L2-stretch on the dense meshes, section 4.1; slow); area, dad, dl2, sdl, gar (on the base domains, "
           "section 4.2); or balanced (section 4.3; the default)")
       ->check(CLI::IsMember(names));
-  command.add_flag("--merge,!--no-merge", settings.merge,
+  command.add_flag("--merge,!--no-merge", optimization.merge,
                    "Merge triangle pairs into quads where it lowers the domain distortion (paper section 5; default on)");
-  command.add_flag("!--no-stretch", settings.stretch,
+  command.add_flag("!--no-stretch", optimization.stretch,
                    "Keep the initial layout curves instead of straightening them into geodesics first");
+  command.add_flag("--untangle,!--no-untangle", settings.untangle,
+                   "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
+                   "(the map stays a bijection; default on)");
 }
 
 }  // namespace xparam::cli

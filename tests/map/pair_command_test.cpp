@@ -1,0 +1,194 @@
+// `xparam pair` end to end on the bundled man -> woman pair: the written files agree with each
+// other (remesh vertex i is correspondence row i evaluated on the target file), the remesh has
+// the template's faces, metrics.json reports the untangling, `--no-untangle` leaves the folds,
+// and a failing pair exits 3 without writing results.
+#include "io/mesh_loader.h"
+#include "support/test_data.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace xparam {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Runs the program with `arguments`; returns its exit status, stderr into `errors`.
+int run_xparam(const std::string& arguments, const fs::path& dir, std::string& errors) {
+  const fs::path err = dir / "stderr.txt";
+  const std::string command = test::xparam_binary().string() + " " + arguments + " > " +
+                              (dir / "stdout.txt").string() + " 2> " + err.string();
+  const int status = std::system(command.c_str());
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  errors = text.str();
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string pair_arguments(const fs::path& out, const std::string& extra = "") {
+  return "pair --quiet --source " + test::data_path("human_man.obj").string() + " --source-anchors " +
+         test::data_path("human.anchors.json").string() + " --target " +
+         test::data_path("sample_targets/woman.obj").string() + " --target-anchors " +
+         test::data_path("sample_targets/woman.anchors.json").string() + " --out " + out.string() + " " + extra;
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+struct ObjFile {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> faces;  // 0-based
+};
+
+ObjFile read_obj(const fs::path& path) {
+  ObjFile obj;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string tag;
+    words >> tag;
+    if (tag == "v") {
+      Eigen::Vector3d x;
+      words >> x[0] >> x[1] >> x[2];
+      obj.vertices.push_back(x);
+    } else if (tag == "f") {
+      std::array<int, 3> f{};
+      for (int& corner : f) {
+        std::string token;
+        words >> token;
+        corner = std::stoi(token.substr(0, token.find('/'))) - 1;
+      }
+      obj.faces.push_back(f);
+    }
+  }
+  return obj;
+}
+
+// The mapped runs are shared by the tests below (each takes about a second).
+const fs::path& default_run() {
+  static const fs::path out = [] {
+    const fs::path dir = test::fresh_temp_dir("pair_command_default");
+    std::string errors;
+    const std::string curves = " --curves " + test::data_path("human_man.curves.json").string();
+    EXPECT_EQ(run_xparam(pair_arguments(dir / "out", curves), dir, errors), 0) << errors;
+    return dir / "out";
+  }();
+  return out;
+}
+
+TEST(PairCommand, RemeshIsTheCorrespondenceOnTheTargetWithTheTemplatesFaces) {
+  const fs::path out = default_run();
+  const ObjFile remesh = read_obj(out / "remesh.obj");
+  const ObjFile source = read_obj(test::data_path("human_man.obj"));
+  const ObjFile target = read_obj(test::data_path("sample_targets/woman.obj"));
+  ASSERT_EQ(remesh.vertices.size(), source.vertices.size());
+  EXPECT_EQ(remesh.faces, source.faces);
+
+  std::ifstream csv(out / "correspondence.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "vertex,face,b0,b1,b2");
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) {
+    std::istringstream fields(line);
+    std::string field;
+    std::vector<double> values;
+    while (std::getline(fields, field, ',')) values.push_back(std::stod(field));
+    ASSERT_EQ(values.size(), 5u) << line;
+    const int vertex = static_cast<int>(values[0]);
+    const int face = static_cast<int>(values[1]);
+    ASSERT_EQ(vertex, static_cast<int>(rows));
+    ASSERT_GE(face, 0);
+    ASSERT_LT(face, static_cast<int>(target.faces.size()));
+    EXPECT_NEAR(values[2] + values[3] + values[4], 1.0, 1e-12) << line;
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(values[2 + k], -1e-12) << line;
+      x += values[2 + k] * target.vertices[target.faces[face][k]];
+    }
+    // The OBJ writes 17 significant digits: the same point up to rounding.
+    EXPECT_LT((x - remesh.vertices[vertex]).norm(), 1e-9) << "vertex " << vertex;
+    ++rows;
+  }
+  EXPECT_EQ(rows, source.vertices.size());
+}
+
+TEST(PairCommand, MetricsReportTheMapTheUntanglingAndTheStages) {
+  const nlohmann::json metrics = read_json(default_run() / "metrics.json");
+  EXPECT_EQ(metrics["flipped_faces"], 0);
+  EXPECT_GT(metrics["E_L2"].get<double>(), 1.0);
+  EXPECT_LT(metrics["E_L2"].get<double>(), 1.1);  // measured 1.026
+  EXPECT_NEAR(metrics["area_ratio"].get<double>(), 1.0, 0.02);
+  EXPECT_EQ(metrics["anchors"], 41);
+  EXPECT_EQ(metrics["untangling"]["enabled"], true);
+  // Gamma alone folds a few faces at the toes and the crotch; untangling moved some vertices.
+  EXPECT_GE(metrics["untangling"]["flipped_before"].get<int>(), 1);
+  EXPECT_GE(metrics["untangling"]["moved_vertices"].get<int>(), 1);
+  EXPECT_EQ(metrics["optimization"]["metric"], "balanced");
+  for (const char* stage : {"anchors", "layout", "optimize", "parameterize", "compose", "untangle", "metrics"})
+    EXPECT_GE(metrics["seconds"][stage].get<double>(), 0.0) << stage;
+  EXPECT_TRUE(fs::exists(default_run() / "stretch.ply"));
+}
+
+TEST(PairCommand, CurvesAreCarriedOverAsSurfacePointsAndPolylines) {
+  const nlohmann::json curves = read_json(default_run() / "curves.json")["curves"];
+  std::ifstream in(test::data_path("human_man.curves.json"));
+  const nlohmann::json given = nlohmann::json::parse(in)["curves"];
+  const ObjFile target = read_obj(test::data_path("sample_targets/woman.obj"));
+  ASSERT_EQ(curves.size(), given.size());
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    EXPECT_EQ(curves[c]["name"], given[c]["name"]);
+    ASSERT_EQ(curves[c]["points"].size(), given[c]["points"].size());
+    // Every point is a target surface point, and its position is that point.
+    for (const nlohmann::json& point : curves[c]["points"]) {
+      const std::array<int, 3>& face = target.faces.at(point["face"].get<std::size_t>());
+      Eigen::Vector3d x = Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) x += point["barycentric"][k].get<double>() * target.vertices[face[k]];
+      const Eigen::Vector3d written(point["position"][0].get<double>(), point["position"][1].get<double>(),
+                                    point["position"][2].get<double>());
+      EXPECT_LT((x - written).norm(), 1e-9);
+    }
+  }
+  EXPECT_TRUE(fs::exists(default_run() / "curves.obj"));
+}
+
+TEST(PairCommand, NoUntangleLeavesTheFoldsOfGamma) {
+  const fs::path dir = test::fresh_temp_dir("pair_command_tangled");
+  std::string errors;
+  ASSERT_EQ(run_xparam(pair_arguments(dir / "out", "--no-untangle"), dir, errors), 0) << errors;
+  const nlohmann::json tangled = read_json(dir / "out" / "metrics.json");
+  const nlohmann::json untangled = read_json(default_run() / "metrics.json");
+  EXPECT_EQ(tangled["untangling"]["enabled"], false);
+  EXPECT_EQ(tangled["untangling"]["moved_vertices"], 0);
+  EXPECT_EQ(tangled["flipped_faces"], untangled["untangling"]["flipped_before"]);
+}
+
+TEST(PairCommand, AFailingStageExitsThreeAndWritesNoResults) {
+  const fs::path dir = test::fresh_temp_dir("pair_command_failing");
+  // Anchors the target does not have: the pair cannot be matched.
+  const fs::path wrong = dir / "wrong.anchors.json";
+  std::ofstream(wrong) << R"({"head": 412, "left wrist": 2241, "right wrist": 5559, "nowhere": 3458})";
+  const std::string arguments = "pair --quiet --source " + test::data_path("human_man.obj").string() +
+                                " --source-anchors " + test::data_path("human_man.anchors.json").string() +
+                                " --target " + test::data_path("sample_targets/woman.obj").string() +
+                                " --target-anchors " + wrong.string() + " --out " + (dir / "out").string();
+  std::string errors;
+  EXPECT_EQ(run_xparam(arguments, dir, errors), 3);
+  EXPECT_NE(errors.find("nowhere"), std::string::npos) << errors;
+  EXPECT_FALSE(fs::exists(dir / "out" / "metrics.json"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "correspondence.csv"));
+}
+
+}  // namespace
+}  // namespace xparam
