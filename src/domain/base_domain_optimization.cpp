@@ -43,6 +43,7 @@ class BoundarySwapper {
     version_.assign(n_edges, 0);
     patch_maps_.resize(layout_.patches.size());
     measured_.assign(layout_.patches.size(), false);
+    if (is_dense_metric(settings_.metric)) input_areas_ = input_face_areas(layout_.sides[0].mesh);
     for (const LayoutEdge& edge : layout_.edges) current_.push_back(anchor_pair(edge.anchors[0], edge.anchors[1]));
     seen_.insert(sorted(current_));
   }
@@ -86,9 +87,9 @@ class BoundarySwapper {
   // ad, l2: the map of one patch of the current layout; nullopt when it cannot be measured.
   using PatchMap = std::optional<PatchMapDistortion>;
 
-  static PatchMap try_measure(const Layout& layout, const std::vector<int>& patches) {
+  PatchMap try_measure(const Layout& layout, const std::vector<int>& patches) const {
     try {
-      return measure_patch_map(layout, patches);
+      return measure_patch_map(layout, patches, input_areas_);
     } catch (const ParamError&) {
       return std::nullopt;
     }
@@ -273,6 +274,7 @@ class BoundarySwapper {
   Configuration current_;  // per edge, by edge index
   std::set<Configuration> seen_;
   double threshold_ = 0.0;  // balanced only
+  std::vector<double> input_areas_;   // ad, l2: input_face_areas of the template side
   std::vector<PatchMap> patch_maps_;  // ad, l2: per patch, the current map's measure
   std::vector<bool> measured_;        // ad, l2: per patch, patch_maps_ is up to date
 };

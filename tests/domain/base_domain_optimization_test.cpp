@@ -194,15 +194,29 @@ TEST(BaseDomainOptimization, IdenticalWithOneAndTwoThreads) {
   EXPECT_EQ(one_result.vertices_added, two_result.vertices_added);
 }
 
-TEST(BaseDomainOptimization, DenseMetricsLowerTheirEnergyConsistentlyAtAnyThreadCount) {
-  // AD and L2 (paper section 4.1) on the smaller pair, at one and two threads. Every applied
-  // swap lowered the dense energy of its own quad; that the whole map's energy goes down too
-  // is not a theorem (eq. 6 is not a sum over patches, and refinement changes the face count
-  // of eq. 3's mean), but it holds on this pair, and a key of the wrong sign would raise it.
+TEST(BaseDomainOptimization, DenseAngleDistortionCountsEveryInputFaceOnce) {
+  // The stretched curves cut many template faces into pieces; eq. 3 over all patches still
+  // counts each input face once in all (its pieces' area shares add up to one).
   const Pair& pair = pairs()[1];
   std::vector<int> all_patches(pair.stretched.patches.size());
   for (std::size_t p = 0; p < all_patches.size(); ++p) all_patches[p] = static_cast<int>(p);
-  const PatchMapDistortion start = measure_patch_map(pair.stretched, all_patches);
+  const std::vector<double> input_areas = input_face_areas(pair.stretched.sides[0].mesh);
+  const PatchMapDistortion map = measure_patch_map(pair.stretched, all_patches, input_areas);
+  const double input_faces = static_cast<double>(input_areas.size());
+  EXPECT_GT(map.sums.faces, input_faces + 100) << pair.name;  // the curves did cut faces
+  EXPECT_NEAR(map.angle_weight, input_faces, 1e-9 * input_faces) << pair.name;
+}
+
+TEST(BaseDomainOptimization, DenseMetricsLowerTheirEnergyConsistentlyAtAnyThreadCount) {
+  // AD and L2 (paper section 4.1) on the smaller pair, at one and two threads. Every applied
+  // swap lowered the dense energy of its own quad; that the whole map's energy goes down too
+  // is not a theorem (eq. 6 is not a sum over patches, and a swap re-cuts the faces along its
+  // curves), but it holds on this pair, and a key of the wrong sign would raise it.
+  const Pair& pair = pairs()[1];
+  std::vector<int> all_patches(pair.stretched.patches.size());
+  for (std::size_t p = 0; p < all_patches.size(); ++p) all_patches[p] = static_cast<int>(p);
+  const std::vector<double> input_areas = input_face_areas(pair.stretched.sides[0].mesh);
+  const PatchMapDistortion start = measure_patch_map(pair.stretched, all_patches, input_areas);
   for (SwapMetric metric : {SwapMetric::ad, SwapMetric::l2}) {
     const std::string what = pair.name + " " + std::string(to_string(metric));
     const auto run = [&](int threads) {
@@ -223,7 +237,7 @@ TEST(BaseDomainOptimization, DenseMetricsLowerTheirEnergyConsistentlyAtAnyThread
     EXPECT_EQ(one_result.swaps, two_result.swaps) << what;
     EXPECT_EQ(one_result.refused_swaps, two_result.refused_swaps) << what;
     EXPECT_EQ(one_result.unmeasurable_swaps, two_result.unmeasurable_swaps) << what;
-    const PatchMapDistortion end = measure_patch_map(one, all_patches);
+    const PatchMapDistortion end = measure_patch_map(one, all_patches, input_areas);
     if (metric == SwapMetric::ad) {
       EXPECT_LT(end.e_ang(), start.e_ang()) << what;
     } else {

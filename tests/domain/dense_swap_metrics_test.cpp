@@ -111,7 +111,8 @@ TEST(DensePatchMap, OctahedronAgainstItselfIsTheIdentity) {
   expect_consistent(layout, "octahedron");
   for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
     const SwapQuad quad = *swap_quad(layout, e);
-    const PatchMapDistortion map = measure_patch_map(layout, {quad.left_patch, quad.right_patch});
+    const PatchMapDistortion map =
+        measure_patch_map(layout, {quad.left_patch, quad.right_patch}, input_face_areas(layout.sides[0].mesh));
     EXPECT_EQ(map.sums.faces, 2 * 16) << "edge " << e;
     EXPECT_NEAR(map.sums.source_area, 2 * std::sqrt(3.0) / 2, 1e-12);  // two faces of side sqrt(2)
     EXPECT_NEAR(map.e_l2(), 1.0, 1e-9) << "edge " << e;
@@ -142,7 +143,8 @@ TEST(DensePatchMap, OctahedronAgainstAStretchedCopyByHand) {
   const double e_l2 = std::sqrt(2 / std::sqrt(3.0));
   for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
     const SwapQuad quad = *swap_quad(layout, e);
-    const PatchMapDistortion map = measure_patch_map(layout, {quad.left_patch, quad.right_patch});
+    const PatchMapDistortion map =
+        measure_patch_map(layout, {quad.left_patch, quad.right_patch}, input_face_areas(layout.sides[0].mesh));
     EXPECT_NEAR(map.e_l2(), e_l2, 1e-9) << "edge " << e;
     EXPECT_NEAR(map.e_ang(), e_ang, 1e-9) << "edge " << e;
     EXPECT_NEAR(map.sums.image_area / map.sums.source_area, std::sqrt(3.0), 1e-9);
@@ -152,11 +154,11 @@ TEST(DensePatchMap, OctahedronAgainstAStretchedCopyByHand) {
   PatchMapDistortion summed;
   for (int p = 0; p < static_cast<int>(layout.patches.size()); ++p) {
     all.push_back(p);
-    const PatchMapDistortion one = measure_patch_map(layout, p);
+    const PatchMapDistortion one = measure_patch_map(layout, p, input_face_areas(layout.sides[0].mesh));
     EXPECT_NEAR(one.e_l2(), e_l2, 1e-9);
     summed += one;
   }
-  const PatchMapDistortion whole = measure_patch_map(layout, all);
+  const PatchMapDistortion whole = measure_patch_map(layout, all, input_face_areas(layout.sides[0].mesh));
   EXPECT_EQ(whole.sums.faces, 8 * 16);
   EXPECT_NEAR(whole.e_ang(), e_ang, 1e-9);
   EXPECT_EQ(whole.sums.faces, summed.sums.faces);
@@ -219,11 +221,13 @@ Eigen::Vector3d angles_of(const std::array<Eigen::Vector2d, 3>& x) {
   return angles;
 }
 
-// Eq. 3 over the template faces of `patches` (flat, z = 0) mapped by `map`, piece by centroid.
-double hand_e_ang(const Layout& layout, const std::vector<int>& patches, const PiecewiseAffine& map) {
+// Eq. 3 over the template faces of `patches` (flat, z = 0) mapped by `map`, piece by centroid,
+// each face counted for the share of its input face's area (`input_areas`) it covers.
+double hand_e_ang(const Layout& layout, const std::vector<int>& patches, const PiecewiseAffine& map,
+                  const std::vector<double>& input_areas) {
   const Mesh& mesh = layout.sides[0].mesh;
   double sum = 0.0;
-  int count = 0;
+  double count = 0.0;
   for (FaceHandle f : mesh.faces()) {
     if (std::find(patches.begin(), patches.end(), patch_of(mesh, f)) == patches.end()) continue;
     std::array<Eigen::Vector2d, 3> x;
@@ -232,8 +236,9 @@ double hand_e_ang(const Layout& layout, const std::vector<int>& patches, const P
     const int piece = map.in_first((x[0] + x[1] + x[2]) / 3) ? 0 : 1;
     const Eigen::Vector3d before = angles_of(x);
     const Eigen::Vector3d after = angles_of({map(x[0], piece), map(x[1], piece), map(x[2], piece)});
-    sum += ((before - after).array() / before.array()).square().sum() / 3;
-    ++count;
+    const double share = mesh.calc_face_area(f) / input_areas[input_face(mesh, f)];
+    sum += share * ((before - after).array() / before.array()).square().sum() / 3;
+    count += share;
   }
   return sum / count;
 }
@@ -258,9 +263,11 @@ PillowCase pillow_case(const Eigen::Vector2d& b_target) {
   c.trial = try_swap(c.layout, kDiagonal);
   EXPECT_TRUE(c.trial.possible) << c.trial.refusal;
 
-  const PatchMapDistortion before = measure_patch_map(c.layout, {c.quad.left_patch, c.quad.right_patch});
+  const std::vector<double> input_areas = input_face_areas(c.layout.sides[0].mesh);
+  const PatchMapDistortion before =
+      measure_patch_map(c.layout, {c.quad.left_patch, c.quad.right_patch}, input_areas);
   const PatchMapDistortion after =
-      measure_patch_map(c.trial.after, {c.trial.after_patches[0], c.trial.after_patches[1]});
+      measure_patch_map(c.trial.after, {c.trial.after_patches[0], c.trial.after_patches[1]}, input_areas);
   c.measured = {before.e_ang(), after.e_ang(), before.e_l2(), after.e_l2()};
 
   const Eigen::Vector2d a(0, 0), r(2, 0), b(2, 2), l(0, 2);
@@ -274,8 +281,9 @@ PillowCase pillow_case(const Eigen::Vector2d& b_target) {
   cut_lr.linear = {Eigen::Matrix2d::Identity(), linear_part({l, r, b}, {l, r, b_target})};
   c.by_hand.e_l2_before = hand_e_l2(cut_ab.linear);
   c.by_hand.e_l2_after = hand_e_l2(cut_lr.linear);
-  c.by_hand.e_ang_before = hand_e_ang(c.layout, {c.quad.left_patch, c.quad.right_patch}, cut_ab);
-  c.by_hand.e_ang_after = hand_e_ang(c.trial.after, {c.trial.after_patches[0], c.trial.after_patches[1]}, cut_lr);
+  c.by_hand.e_ang_before = hand_e_ang(c.layout, {c.quad.left_patch, c.quad.right_patch}, cut_ab, input_areas);
+  c.by_hand.e_ang_after =
+      hand_e_ang(c.trial.after, {c.trial.after_patches[0], c.trial.after_patches[1]}, cut_lr, input_areas);
 
   std::array<std::vector<double>, 2> lengths, areas;
   for (int side = 0; side < 2; ++side) {
