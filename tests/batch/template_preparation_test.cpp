@@ -4,6 +4,7 @@
 #include "batch_test_support.h"
 #include "core/errors.h"
 #include "io/sha256.h"
+#include "support/plain_obj.h"
 
 #include <gtest/gtest.h>
 
@@ -14,33 +15,6 @@ namespace xparam {
 namespace {
 
 using test::fs::path;
-
-// The vertices and faces of an OBJ file with plain "v x y z" and "f a b c" lines.
-struct ObjFile {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int, 3>> faces;
-};
-
-ObjFile read_plain_obj(const path& file) {
-  ObjFile obj;
-  std::istringstream in(test::read_file(file));
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    std::string tag;
-    words >> tag;
-    if (tag == "v") {
-      Eigen::Vector3d v;
-      words >> v.x() >> v.y() >> v.z();
-      obj.vertices.push_back(v);
-    } else if (tag == "f") {
-      std::array<int, 3> f{};
-      words >> f[0] >> f[1] >> f[2];
-      obj.faces.push_back({f[0] - 1, f[1] - 1, f[2] - 1});
-    }
-  }
-  return obj;
-}
 
 // A point given on `faces` (corner order of that array) with barycentrics.
 Eigen::Vector3d point_on(const Eigen::MatrixX3d& vertices, const Eigen::MatrixX3i& faces, int face,
@@ -54,7 +28,7 @@ TEST(TemplatePreparation, RecordMirrorsTheFiles) {
   const TemplateInputs inputs = test::man_template();
   const PreparedTemplate prepared = prepare_template(inputs);
   const TemplateRecord& record = prepared.record;
-  const ObjFile obj = read_plain_obj(inputs.mesh);
+  const test::PlainObj obj = test::read_plain_obj(inputs.mesh);
 
   EXPECT_EQ(prepared.loaded.file_order.reversed_count(), 0);
   ASSERT_EQ(record.vertices.rows(), 6890);
@@ -62,7 +36,8 @@ TEST(TemplatePreparation, RecordMirrorsTheFiles) {
   for (std::size_t v = 0; v < obj.vertices.size(); ++v)
     ASSERT_EQ(record.vertices.row(static_cast<Eigen::Index>(v)).transpose(), obj.vertices[v]) << v;
   for (std::size_t f = 0; f < obj.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k) ASSERT_EQ(record.faces(static_cast<Eigen::Index>(f), k), obj.faces[f][k]) << f;
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(record.faces(static_cast<Eigen::Index>(f), k), obj.faces[f][k]) << f;
 
   EXPECT_EQ(record.mesh_file, inputs.mesh.string());
   EXPECT_EQ(record.mesh_sha256, sha256_file_hex(inputs.mesh));
@@ -77,8 +52,12 @@ TEST(TemplatePreparation, RecordMirrorsTheFiles) {
   const TemplateCurve& arm = record.curves[1];
   EXPECT_EQ(arm.name, "left arm");
   ASSERT_EQ(arm.face.size(), 4u);
-  EXPECT_LT((point_on(record.vertices, record.faces, arm.face[0], arm.bary.row(0)) - obj.vertices[3011]).norm(), 1e-12);
-  EXPECT_LT((point_on(record.vertices, record.faces, arm.face[3], arm.bary.row(3)) - obj.vertices[2241]).norm(), 1e-12);
+  EXPECT_LT(
+      (point_on(record.vertices, record.faces, arm.face[0], arm.bary.row(0)) - obj.vertices[3011]).norm(),
+      1e-12);
+  EXPECT_LT(
+      (point_on(record.vertices, record.faces, arm.face[3], arm.bary.row(3)) - obj.vertices[2241]).norm(),
+      1e-12);
 }
 
 TEST(TemplatePreparation, PositionAnchorsAreRecordedAtTheirVertex) {
@@ -96,10 +75,11 @@ TEST(TemplatePreparation, PositionAnchorsAreRecordedAtTheirVertex) {
 // face + barycentric inputs (written against the file) keep meaning the same points.
 TEST(TemplatePreparation, InwardFacingTemplateKeepsFileCornerOrder) {
   const path dir = test::fresh_temp_dir("template_inward");
-  const ObjFile obj = read_plain_obj(test::data_path("human_man.obj"));
+  const test::PlainObj obj = test::read_plain_obj(test::data_path("human_man.obj"));
   std::ostringstream reversed;
   reversed.precision(17);
-  for (const Eigen::Vector3d& v : obj.vertices) reversed << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
+  for (const Eigen::Vector3d& v : obj.vertices)
+    reversed << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
   for (const auto& f : obj.faces) reversed << "f " << f[0] + 1 << " " << f[2] + 1 << " " << f[1] + 1 << "\n";
   test::write_file(dir / "inward.obj", reversed.str());
   // Face 10 of the reversed file is (a, c, b) of the original face (a, b, c).
@@ -124,7 +104,8 @@ TEST(TemplatePreparation, InwardFacingTemplateKeepsFileCornerOrder) {
   const Eigen::Vector3d expected =
       0.2 * obj.vertices[f10[0]] + 0.3 * obj.vertices[f10[2]] + 0.5 * obj.vertices[f10[1]];
   const TemplateCurve& curve = record.curves.at(0);
-  EXPECT_LT((point_on(record.vertices, record.faces, curve.face[0], curve.bary.row(0)) - expected).norm(), 1e-12);
+  EXPECT_LT((point_on(record.vertices, record.faces, curve.face[0], curve.bary.row(0)) - expected).norm(),
+            1e-12);
   // The curve handed to the pipeline is in the mesh's corner order: the same point.
   const SurfacePoint& on_mesh = prepared.curves.at(0).points[0];
   EXPECT_LT((position(prepared.loaded.mesh, on_mesh) - expected).norm(), 1e-12);

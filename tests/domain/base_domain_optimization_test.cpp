@@ -60,10 +60,11 @@ Pair make_pair(const std::string& name, Layout layout) {
 const std::vector<Pair>& pairs() {
   static const std::vector<Pair> all = [] {
     std::vector<Pair> result;
-    result.push_back(make_pair("man/woman", build_layout("human_man.obj", "human_man.anchors.json", "human_woman.obj",
-                                                         "human_woman.anchors.json")));
-    result.push_back(make_pair("spot/spot low", build_layout("spot.ply", "spot.anchors.json", "spot_low_resolution.obj",
-                                                             "spot_low_resolution.anchors.json")));
+    result.push_back(make_pair("man/woman", build_layout("human_man.obj", "human_man.anchors.json",
+                                                         "human_woman.obj", "human_woman.anchors.json")));
+    result.push_back(
+        make_pair("spot/spot low", build_layout("spot.ply", "spot.anchors.json", "spot_low_resolution.obj",
+                                                "spot_low_resolution.anchors.json")));
     return result;
   }();
   return all;
@@ -113,8 +114,8 @@ TEST(BaseDomainOptimization, MetricNamesAreTheOptionNames) {
 TEST(BaseDomainOptimization, EveryMetricKeepsTheLayoutConsistent) {
   for (const Pair& pair : pairs()) {
     const Dl2Survey start = survey(pair.stretched);
-    for (SwapMetric metric :
-         {SwapMetric::area, SwapMetric::dad, SwapMetric::dl2, SwapMetric::sdl, SwapMetric::gar, SwapMetric::balanced}) {
+    for (SwapMetric metric : {SwapMetric::area, SwapMetric::dad, SwapMetric::dl2, SwapMetric::sdl,
+                              SwapMetric::gar, SwapMetric::balanced}) {
       const std::string what = pair.name + " " + std::string(to_string(metric));
       Layout layout = pair.stretched;
       DomainOptimizationSettings settings;
@@ -134,7 +135,10 @@ TEST(BaseDomainOptimization, EveryMetricKeepsTheLayoutConsistent) {
       // Every pair of anchors joined at most once (a swap to an existing edge is refused).
       std::set<std::pair<int, int>> joined;
       for (const LayoutEdge& edge : layout.edges) {
-        EXPECT_TRUE(joined.emplace(std::min(edge.anchors[0], edge.anchors[1]), std::max(edge.anchors[0], edge.anchors[1])).second)
+        EXPECT_TRUE(joined
+                        .emplace(std::min(edge.anchors[0], edge.anchors[1]),
+                                 std::max(edge.anchors[0], edge.anchors[1]))
+                        .second)
             << what;
       }
     }
@@ -194,12 +198,17 @@ TEST(BaseDomainOptimization, IdenticalWithOneAndTwoThreads) {
   EXPECT_EQ(one_result.vertices_added, two_result.vertices_added);
 }
 
+std::vector<int> every_patch(const Layout& layout) {
+  std::vector<int> patches(layout.patches.size());
+  for (std::size_t p = 0; p < patches.size(); ++p) patches[p] = static_cast<int>(p);
+  return patches;
+}
+
 TEST(BaseDomainOptimization, DenseAngleDistortionCountsEveryInputFaceOnce) {
   // The stretched curves cut many template faces into pieces; eq. 3 over all patches still
   // counts each input face once in all (its pieces' area shares add up to one).
   const Pair& pair = pairs()[1];
-  std::vector<int> all_patches(pair.stretched.patches.size());
-  for (std::size_t p = 0; p < all_patches.size(); ++p) all_patches[p] = static_cast<int>(p);
+  const std::vector<int> all_patches = every_patch(pair.stretched);
   const std::vector<double> input_areas = input_face_areas(pair.stretched.sides[0].mesh);
   const PatchMapDistortion map = measure_patch_map(pair.stretched, all_patches, input_areas);
   const double input_faces = static_cast<double>(input_areas.size());
@@ -213,8 +222,7 @@ TEST(BaseDomainOptimization, DenseMetricsLowerTheirEnergyConsistentlyAtAnyThread
   // is not a theorem (eq. 6 is not a sum over patches, and a swap re-cuts the faces along its
   // curves), but it holds on this pair, and a key of the wrong sign would raise it.
   const Pair& pair = pairs()[1];
-  std::vector<int> all_patches(pair.stretched.patches.size());
-  for (std::size_t p = 0; p < all_patches.size(); ++p) all_patches[p] = static_cast<int>(p);
+  const std::vector<int> all_patches = every_patch(pair.stretched);
   const std::vector<double> input_areas = input_face_areas(pair.stretched.sides[0].mesh);
   const PatchMapDistortion start = measure_patch_map(pair.stretched, all_patches, input_areas);
   for (SwapMetric metric : {SwapMetric::ad, SwapMetric::l2}) {

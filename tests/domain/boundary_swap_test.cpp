@@ -5,10 +5,10 @@
 #include "domain/boundary_swap.h"
 
 #include "core/errors.h"
+#include "domain/stretched_layouts.h"
 #include "geodesic/locally_shortest.h"
 #include "layout/chain_edit.h"
 #include "layout/consistent_layout.h"
-#include "layout/layout_fixtures.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
@@ -22,41 +22,6 @@
 namespace xparam {
 namespace {
 
-// How far try_swap's lengths and areas may be from apply_swap's, relative. try_swap works on a
-// copy of the quad alone (domain/quad_workspace.h) that keeps the full mesh's element order, so
-// it makes the same splits and sums the same areas in the same order: measured on every edge of
-// the human and spot layouts (tests/domain/quad_workspace_test.cpp) and along these random
-// sequences, the difference is exactly 0 and the new chains are point-identical. The bound only
-// leaves room for a last-bit difference should one side ever sum in another order.
-constexpr double kTrialTolerance = 1e-12;
-
-// Stretched layouts, built once per test program.
-const Layout& human_layout() {
-  static const Layout layout = [] {
-    const Mesh man = test::load(test::data_path("human_man.obj"));
-    const Mesh woman = test::load(test::data_path("human_woman.obj"));
-    const std::vector<int> ids = test::anchor_vertex_ids("human_man.anchors.json");
-    Layout built = build_consistent_layout(man, test::handles(ids), woman, test::handles(ids)).layout;
-    stretch_layout(built);
-    return built;
-  }();
-  return layout;
-}
-
-const Layout& spot_layout() {
-  static const Layout layout = [] {
-    const Mesh low = test::load(test::data_path("spot_low_resolution.obj"));
-    const Mesh high = test::load(test::data_path("spot.ply"));
-    const std::vector<int> ids = test::farthest_points(low, 14);
-    Layout built = build_consistent_layout(low, test::handles(ids), high,
-                                           test::handles(test::nearest_vertices(low, ids, high)))
-                       .layout;
-    stretch_layout(built);
-    return built;
-  }();
-  return layout;
-}
-
 // Everything a swap may change, to prove a refused swap changed nothing.
 void expect_same(const Layout& a, const Layout& b) {
   ASSERT_EQ(a.edges.size(), b.edges.size());
@@ -69,13 +34,13 @@ void expect_same(const Layout& a, const Layout& b) {
 }
 
 // What apply_swap produced for the trial's quad: the new chain's length and the two patches'
-// areas, per side, within kTrialTolerance of the trial's.
+// areas, per side, within test::kTrialTolerance of the trial's.
 void expect_trial_matches(const Layout& layout, const SwapTrial& trial) {
   const int e = trial.quad.edge;
   for (int side = 0; side < 2; ++side) {
     const Mesh& mesh = layout.sides[side].mesh;
     EXPECT_NEAR(trial.length[side], chain_length(mesh, layout.sides[side].chains[e]),
-                kTrialTolerance * trial.length[side]);
+                test::kTrialTolerance * trial.length[side]);
     std::array<double, 2> area{};
     for (const FaceHandle f : mesh.faces()) {
       const int p = patch_of(mesh, f);
@@ -86,7 +51,7 @@ void expect_trial_matches(const Layout& layout, const SwapTrial& trial) {
       const Eigen::Vector3d z = position(mesh, *corner);
       area[p == trial.quad.left_patch ? 0 : 1] += 0.5 * (y - x).cross(z - x).norm();
     }
-    for (int k = 0; k < 2; ++k) EXPECT_NEAR(trial.area[side][k], area[k], kTrialTolerance * area[k]);
+    for (int k = 0; k < 2; ++k) EXPECT_NEAR(trial.area[side][k], area[k], test::kTrialTolerance * area[k]);
   }
 }
 
@@ -129,15 +94,15 @@ void random_swaps(const Layout& original, unsigned seed, int count, const std::s
 }
 
 TEST(BoundarySwap, RandomSwapsOnTheHumanPairKeepTheLayoutConsistent) {
-  random_swaps(human_layout(), 5, 24, "human pair");
+  random_swaps(test::stretched_human_layout(), 5, 24, "human pair");
 }
 
 TEST(BoundarySwap, RandomSwapsOnSpotKeepTheLayoutConsistent) {
-  random_swaps(spot_layout(), 11, 30, "spot pair");
+  random_swaps(test::stretched_spot_layout(), 11, 30, "spot pair");
 }
 
 TEST(BoundarySwap, SwappingAnEdgeTwiceGivesBackItsAnchors) {
-  const Layout& original = human_layout();
+  const Layout& original = test::stretched_human_layout();
   int checked = 0;
   for (int e = 0; e < static_cast<int>(original.edges.size()) && checked < 3; ++e) {
     if (!try_swap(original, e).possible) continue;
@@ -210,12 +175,12 @@ void check_refusals(const Layout& original, const std::string& what) {
 }
 
 TEST(BoundarySwap, RefusesJoinedCornersAndLowDegreeAnchors) {
-  check_refusals(human_layout(), "human pair");
-  check_refusals(spot_layout(), "spot pair");
+  check_refusals(test::stretched_human_layout(), "human pair");
+  check_refusals(test::stretched_spot_layout(), "spot pair");
 }
 
 TEST(BoundarySwap, QuadNamesTheFourCornersCounterClockwise) {
-  const Layout& layout = spot_layout();
+  const Layout& layout = test::stretched_spot_layout();
   for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
     const SwapQuad quad = swap_quad(layout, e).value();
     EXPECT_EQ(quad.a, layout.edges[e].anchors[0]);

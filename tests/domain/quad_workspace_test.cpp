@@ -6,12 +6,12 @@
 #include "core/errors.h"
 #include "core/provenance.h"
 #include "domain/boundary_swap.h"
+#include "domain/stretched_layouts.h"
 #include "geodesic/locally_shortest.h"
 #include "geodesic/vertex_fan.h"
 #include "layout/chain_edit.h"
 #include "layout/consistent_layout.h"
 #include "layout/layout_check.h"
-#include "layout/layout_fixtures.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
@@ -28,41 +28,6 @@
 
 namespace xparam {
 namespace {
-
-// How far try_swap's lengths and areas may be from apply_swap's, relative. The workspace is an
-// order-isomorphic copy of the quad, so both make the same splits at the same points and sum the
-// same face areas in the same order: on every edge of the human and spot layouts the measured
-// difference is exactly 0 (TrySwapAgreesWithApplySwap prints it). The bound leaves room only for
-// a last-bit difference should an operation ever sum in another order (double rounding of a sum
-// of up to ~1e4 terms stays far below 1e-12 relative).
-constexpr double kTrialTolerance = 1e-12;
-
-// Stretched layouts, built once per test program.
-const Layout& human_layout() {
-  static const Layout layout = [] {
-    const Mesh man = test::load(test::data_path("human_man.obj"));
-    const Mesh woman = test::load(test::data_path("human_woman.obj"));
-    const std::vector<int> ids = test::anchor_vertex_ids("human_man.anchors.json");
-    Layout built = build_consistent_layout(man, test::handles(ids), woman, test::handles(ids)).layout;
-    stretch_layout(built);
-    return built;
-  }();
-  return layout;
-}
-
-const Layout& spot_layout() {
-  static const Layout layout = [] {
-    const Mesh low = test::load(test::data_path("spot_low_resolution.obj"));
-    const Mesh high = test::load(test::data_path("spot.ply"));
-    const std::vector<int> ids = test::farthest_points(low, 14);
-    Layout built = build_consistent_layout(low, test::handles(ids), high,
-                                           test::handles(test::nearest_vertices(low, ids, high)))
-                       .layout;
-    stretch_layout(built);
-    return built;
-  }();
-  return layout;
-}
 
 double face_area(const Mesh& mesh, FaceHandle f) {
   auto corner = mesh.cfv_begin(f);
@@ -90,7 +55,8 @@ std::vector<Eigen::Vector3d> points(const Mesh& mesh, const std::vector<VertexHa
 }
 
 // The structural check of one workspace against the layout it was cut from.
-void expect_faithful(const Layout& layout, const SwapQuad& quad, const QuadWorkspace& ws, const std::string& what) {
+void expect_faithful(const Layout& layout, const SwapQuad& quad, const QuadWorkspace& ws,
+                     const std::string& what) {
   SCOPED_TRACE(what);
   LayoutCheckSettings polygons;
   polygons.triangles = false;
@@ -134,11 +100,13 @@ void expect_faithful(const Layout& layout, const SwapQuad& quad, const QuadWorks
       ASSERT_EQ(ws.patches[patch_of(local, g)], patch_of(full, f)) << "face " << k;
       ASSERT_EQ(input_face(local, g), input_face(full, f)) << "face " << k;
       auto corner = local.cfv_begin(g);
-      for (const VertexHandle v : full.fv_range(f)) ASSERT_EQ(vertices[(corner++)->idx()], v.idx()) << "face " << k;
+      for (const VertexHandle v : full.fv_range(f))
+        ASSERT_EQ(vertices[(corner++)->idx()], v.idx()) << "face " << k;
     }
     // The cap: one face per boundary edge of the quad, closing the mesh into a sphere.
     int boundary_edges = 0;
-    for (int k = 1; k < 5; ++k) boundary_edges += static_cast<int>(layout.sides[side].chains[ws.edges[k]].size()) - 1;
+    for (int k = 1; k < 5; ++k)
+      boundary_edges += static_cast<int>(layout.sides[side].chains[ws.edges[k]].size()) - 1;
     ASSERT_EQ(local.n_faces(), faces.size() + boundary_edges);
     for (std::size_t k = faces.size(); k < local.n_faces(); ++k) {
       const FaceHandle cap(static_cast<int>(k));
@@ -153,7 +121,8 @@ void expect_faithful(const Layout& layout, const SwapQuad& quad, const QuadWorks
 
     // Chains and anchors: the same points as in the full layout.
     for (int k = 0; k < 5; ++k) {
-      EXPECT_EQ(points(local, ws.layout.sides[side].chains[k]), points(full, layout.sides[side].chains[ws.edges[k]]))
+      EXPECT_EQ(points(local, ws.layout.sides[side].chains[k]),
+                points(full, layout.sides[side].chains[ws.edges[k]]))
           << "edge " << k;
     }
     for (int k = 0; k < 4; ++k) {
@@ -168,7 +137,7 @@ void expect_faithful(const Layout& layout, const SwapQuad& quad, const QuadWorks
 }
 
 TEST(QuadWorkspace, EveryQuadOfTheHumansIsCopiedFaithfully) {
-  const Layout& layout = human_layout();
+  const Layout& layout = test::stretched_human_layout();
   int checked = 0;
   for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
     const SwapQuad quad = swap_quad(layout, e).value();
@@ -180,7 +149,7 @@ TEST(QuadWorkspace, EveryQuadOfTheHumansIsCopiedFaithfully) {
 }
 
 // try_swap on the workspace against apply_swap on the full layout, for every edge of `layout`:
-// the same refusals, and lengths and areas within kTrialTolerance; the trial's `after` is a
+// the same refusals, and lengths and areas within test::kTrialTolerance; the trial's `after` is a
 // consistent layout whose new patches hold the faces apply_swap gives them.
 void expect_trials_match(const Layout& layout, const std::string& what) {
   double worst = 0.0;
@@ -214,19 +183,20 @@ void expect_trials_match(const Layout& layout, const std::string& what) {
       const Mesh& full = applied.sides[side].mesh;
       const Mesh& after = trial.after.sides[side].mesh;
       const double length = chain_length(full, applied.sides[side].chains[e]);
-      EXPECT_NEAR(trial.length[side], length, kTrialTolerance * length);
+      EXPECT_NEAR(trial.length[side], length, test::kTrialTolerance * length);
       worst = std::max(worst, std::abs(trial.length[side] - length) / length);
       const std::array<double, 2> area = areas(full, patches);
       const std::array<double, 2> after_area = areas(after, trial.after_patches);
       for (int k = 0; k < 2; ++k) {
-        EXPECT_NEAR(trial.area[side][k], area[k], kTrialTolerance * area[k]);
-        EXPECT_NEAR(after_area[k], area[k], kTrialTolerance * area[k]);
+        EXPECT_NEAR(trial.area[side][k], area[k], test::kTrialTolerance * area[k]);
+        EXPECT_NEAR(after_area[k], area[k], test::kTrialTolerance * area[k]);
         worst = std::max(worst, std::abs(trial.area[side][k] - area[k]) / area[k]);
       }
       // The new curve in `after`: the chain of the new patches' shared edge.
       const int lr = layout_edge_of(trial.after.patches[trial.after_patches[0]].front());
       EXPECT_EQ(trial.after.edges[lr].anchors, (std::array<int, 2>{2, 3}));  // l -> r
-      same_chains += points(after, trial.after.sides[side].chains[lr]) == points(full, applied.sides[side].chains[e]);
+      same_chains +=
+          points(after, trial.after.sides[side].chains[lr]) == points(full, applied.sides[side].chains[e]);
     }
   }
   EXPECT_GT(possible, 0) << what;
@@ -234,17 +204,22 @@ void expect_trials_match(const Layout& layout, const std::string& what) {
   std::cout << what << ": " << possible << " swaps possible, " << refused << " refused; largest relative "
             << "difference try_swap vs apply_swap " << worst << "; " << same_chains << " of " << 2 * possible
             << " new chains point-identical; one try_swap " << 1e3 * seconds / layout.edges.size() << " ms ("
-            << layout.sides[0].mesh.n_vertices() << " + " << layout.sides[1].mesh.n_vertices() << " vertices)\n";
+            << layout.sides[0].mesh.n_vertices() << " + " << layout.sides[1].mesh.n_vertices()
+            << " vertices)\n";
 }
 
-TEST(QuadWorkspace, TrySwapAgreesWithApplySwapOnTheHumans) { expect_trials_match(human_layout(), "human pair"); }
+TEST(QuadWorkspace, TrySwapAgreesWithApplySwapOnTheHumans) {
+  expect_trials_match(test::stretched_human_layout(), "human pair");
+}
 
-TEST(QuadWorkspace, TrySwapAgreesWithApplySwapOnSpot) { expect_trials_match(spot_layout(), "spot pair"); }
+TEST(QuadWorkspace, TrySwapAgreesWithApplySwapOnSpot) {
+  expect_trials_match(test::stretched_spot_layout(), "spot pair");
+}
 
 // try_swap of every edge, once in edge order on one thread and once in parallel on two: the
 // same refusals and bit-identical numbers (the optimizer evaluates candidates in parallel).
 TEST(QuadWorkspace, TrialsDoNotDependOnTheThreadCount) {
-  const Layout& layout = human_layout();
+  const Layout& layout = test::stretched_human_layout();
   const int n = static_cast<int>(layout.edges.size());
   std::vector<SwapTrial> serial(n), parallel(n);
   for (int e = 0; e < n; ++e) serial[e] = try_swap(layout, e);

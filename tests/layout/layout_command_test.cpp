@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -14,19 +13,6 @@ namespace xparam {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Runs the program with `arguments`; returns its exit status, stderr into `errors`.
-int run_xparam(const std::string& arguments, const fs::path& dir, std::string& errors) {
-  const fs::path err = dir / "stderr.txt";
-  const std::string command = test::xparam_binary().string() + " " + arguments + " > " +
-                              (dir / "stdout.txt").string() + " 2> " + err.string();
-  const int status = std::system(command.c_str());
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  errors = text.str();
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 // Eight SMPL vertices spread over the body, as a flat anchors JSON.
 fs::path write_anchors(const fs::path& dir) {
@@ -51,7 +37,7 @@ TEST(LayoutCommand, WritesBothRefinedMeshesAndTheSummary) {
                                 " --source-anchors " + anchors.string() + " --target " +
                                 test::data_path("human_woman.obj").string() + " --target-anchors " +
                                 anchors.string() + " --out " + (dir / "out").string() + " --check";
-  ASSERT_EQ(run_xparam(arguments, dir, errors), 0) << errors;
+  ASSERT_EQ(test::run_xparam(arguments, dir, errors), 0) << errors;
   std::ifstream in(dir / "out" / "layout.json");
   const nlohmann::json summary = nlohmann::json::parse(in);
   EXPECT_EQ(summary["anchors"], 8);
@@ -83,7 +69,7 @@ TEST(LayoutCommand, GenusMismatchExitsNonZeroWithAClearMessage) {
                                 " --source-anchors " + anchors.string() + " --target " +
                                 test::data_path("bob_small.ply").string() + " --target-anchors " +
                                 anchors.string() + " --out " + (dir / "out").string();
-  EXPECT_NE(run_xparam(arguments, dir, errors), 0);
+  EXPECT_NE(test::run_xparam(arguments, dir, errors), 0);
   EXPECT_NE(errors.find("target mesh has genus 1"), std::string::npos) << errors;
   EXPECT_FALSE(fs::exists(dir / "out" / "layout.json"));
 }

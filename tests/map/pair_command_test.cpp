@@ -2,14 +2,13 @@
 // other (remesh vertex i is correspondence row i evaluated on the target file), the remesh has
 // the template's faces, metrics.json reports the untangling, `--no-untangle` leaves the folds,
 // and a failing pair exits 3 without writing results.
-#include "io/mesh_loader.h"
+#include "support/plain_obj.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <array>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -20,59 +19,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Runs the program with `arguments`; returns its exit status, stderr into `errors`.
-int run_xparam(const std::string& arguments, const fs::path& dir, std::string& errors) {
-  const fs::path err = dir / "stderr.txt";
-  const std::string command = test::xparam_binary().string() + " " + arguments + " > " +
-                              (dir / "stdout.txt").string() + " 2> " + err.string();
-  const int status = std::system(command.c_str());
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  errors = text.str();
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 std::string pair_arguments(const fs::path& out, const std::string& extra = "") {
   return "pair --quiet --source " + test::data_path("human_man.obj").string() + " --source-anchors " +
          test::data_path("human.anchors.json").string() + " --target " +
          test::data_path("sample_targets/woman.obj").string() + " --target-anchors " +
-         test::data_path("sample_targets/woman.anchors.json").string() + " --out " + out.string() + " " + extra;
+         test::data_path("sample_targets/woman.anchors.json").string() + " --out " + out.string() + " " +
+         extra;
 }
 
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
   return nlohmann::json::parse(in);
-}
-
-struct ObjFile {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int, 3>> faces;  // 0-based
-};
-
-ObjFile read_obj(const fs::path& path) {
-  ObjFile obj;
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    std::string tag;
-    words >> tag;
-    if (tag == "v") {
-      Eigen::Vector3d x;
-      words >> x[0] >> x[1] >> x[2];
-      obj.vertices.push_back(x);
-    } else if (tag == "f") {
-      std::array<int, 3> f{};
-      for (int& corner : f) {
-        std::string token;
-        words >> token;
-        corner = std::stoi(token.substr(0, token.find('/'))) - 1;
-      }
-      obj.faces.push_back(f);
-    }
-  }
-  return obj;
 }
 
 // The mapped runs are shared by the tests below (each takes about a second).
@@ -81,7 +38,7 @@ const fs::path& default_run() {
     const fs::path dir = test::fresh_temp_dir("pair_command_default");
     std::string errors;
     const std::string curves = " --curves " + test::data_path("human_man.curves.json").string();
-    EXPECT_EQ(run_xparam(pair_arguments(dir / "out", curves), dir, errors), 0) << errors;
+    EXPECT_EQ(test::run_xparam(pair_arguments(dir / "out", curves), dir, errors), 0) << errors;
     return dir / "out";
   }();
   return out;
@@ -89,9 +46,9 @@ const fs::path& default_run() {
 
 TEST(PairCommand, RemeshIsTheCorrespondenceOnTheTargetWithTheTemplatesFaces) {
   const fs::path out = default_run();
-  const ObjFile remesh = read_obj(out / "remesh.obj");
-  const ObjFile source = read_obj(test::data_path("human_man.obj"));
-  const ObjFile target = read_obj(test::data_path("sample_targets/woman.obj"));
+  const test::PlainObj remesh = test::read_plain_obj(out / "remesh.obj");
+  const test::PlainObj source = test::read_plain_obj(test::data_path("human_man.obj"));
+  const test::PlainObj target = test::read_plain_obj(test::data_path("sample_targets/woman.obj"));
   ASSERT_EQ(remesh.vertices.size(), source.vertices.size());
   EXPECT_EQ(remesh.faces, source.faces);
 
@@ -136,7 +93,8 @@ TEST(PairCommand, MetricsReportTheMapTheUntanglingAndTheStages) {
   EXPECT_GE(metrics["untangling"]["flipped_before"].get<int>(), 1);
   EXPECT_GE(metrics["untangling"]["moved_vertices"].get<int>(), 1);
   EXPECT_EQ(metrics["optimization"]["metric"], "balanced");
-  for (const char* stage : {"anchors", "layout", "optimize", "parameterize", "compose", "untangle", "metrics"})
+  for (const char* stage :
+       {"anchors", "layout", "optimize", "parameterize", "compose", "untangle", "metrics"})
     EXPECT_GE(metrics["seconds"][stage].get<double>(), 0.0) << stage;
   EXPECT_TRUE(fs::exists(default_run() / "stretch.ply"));
 }
@@ -145,7 +103,7 @@ TEST(PairCommand, CurvesAreCarriedOverAsSurfacePointsAndPolylines) {
   const nlohmann::json curves = read_json(default_run() / "curves.json")["curves"];
   std::ifstream in(test::data_path("human_man.curves.json"));
   const nlohmann::json given = nlohmann::json::parse(in)["curves"];
-  const ObjFile target = read_obj(test::data_path("sample_targets/woman.obj"));
+  const test::PlainObj target = test::read_plain_obj(test::data_path("sample_targets/woman.obj"));
   ASSERT_EQ(curves.size(), given.size());
   for (std::size_t c = 0; c < curves.size(); ++c) {
     EXPECT_EQ(curves[c]["name"], given[c]["name"]);
@@ -166,7 +124,7 @@ TEST(PairCommand, CurvesAreCarriedOverAsSurfacePointsAndPolylines) {
 TEST(PairCommand, NoUntangleLeavesTheFoldsOfGamma) {
   const fs::path dir = test::fresh_temp_dir("pair_command_tangled");
   std::string errors;
-  ASSERT_EQ(run_xparam(pair_arguments(dir / "out", "--no-untangle"), dir, errors), 0) << errors;
+  ASSERT_EQ(test::run_xparam(pair_arguments(dir / "out", "--no-untangle"), dir, errors), 0) << errors;
   const nlohmann::json tangled = read_json(dir / "out" / "metrics.json");
   const nlohmann::json untangled = read_json(default_run() / "metrics.json");
   EXPECT_EQ(tangled["untangling"]["enabled"], false);
@@ -184,7 +142,7 @@ TEST(PairCommand, AFailingStageExitsThreeAndWritesNoResults) {
                                 " --target " + test::data_path("sample_targets/woman.obj").string() +
                                 " --target-anchors " + wrong.string() + " --out " + (dir / "out").string();
   std::string errors;
-  EXPECT_EQ(run_xparam(arguments, dir, errors), 3);
+  EXPECT_EQ(test::run_xparam(arguments, dir, errors), 3);
   EXPECT_NE(errors.find("nowhere"), std::string::npos) << errors;
   EXPECT_FALSE(fs::exists(dir / "out" / "metrics.json"));
   EXPECT_FALSE(fs::exists(dir / "out" / "correspondence.csv"));

@@ -20,4 +20,8 @@ std::filesystem::path xparam_binary();
 /// A fresh, empty directory for one test's outputs (under the system temp directory).
 std::filesystem::path fresh_temp_dir(const std::string& name);
 
+/// Run `xparam ARGUMENTS` with stdout and stderr into `dir`/stdout.txt and stderr.txt; returns
+/// its exit status (-1 when it did not exit normally), its stderr into `errors`.
+int run_xparam(const std::string& arguments, const std::filesystem::path& dir, std::string& errors);
+
 }  // namespace xparam::test
