@@ -4,11 +4,14 @@
 
 #include "batch/target_discovery.h"
 #include "batch_test_support.h"
+#include "support/plain_obj.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace xparam {
 namespace {
@@ -92,7 +95,8 @@ TEST(TargetJob, RetriangulatedManMapsNearTheIdentity) {
 
   // gt_error recomputed by hand from the remesh and the unchanged vertex positions.
   double sum = 0.0;
-  for (Eigen::Index v = 0; v < n; ++v) sum += (record.remesh_vertices.row(v) - man().record.vertices.row(v)).norm();
+  for (Eigen::Index v = 0; v < n; ++v)
+    sum += (record.remesh_vertices.row(v) - man().record.vertices.row(v)).norm();
   EXPECT_DOUBLE_EQ(record.metrics.gt_error, sum / static_cast<double>(n));
   // Bounds that a mix-up in the batch plumbing (wrong target, vertex order, corner order) breaks
   // by far on a 1.8 m body, loose enough for the method's own error (measured 2026-11-23: mean
@@ -110,35 +114,23 @@ TEST(TargetJob, RetriangulatedManMapsNearTheIdentity) {
 // still refer to the corners in the order the FILE lists them.
 TEST(TargetJob, CorrespondenceIsInTheTargetFilesCornerOrder) {
   const path dir = test::fresh_temp_dir("job_inward_target");
-  std::istringstream in(test::read_file(test::sample_targets() / "man_bent.obj"));
+  test::PlainObj obj = test::read_plain_obj(test::sample_targets() / "man_bent.obj");
   std::ostringstream reversed;
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int, 3>> faces;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    std::string tag;
-    words >> tag;
-    if (tag == "v") {
-      Eigen::Vector3d v;
-      words >> v.x() >> v.y() >> v.z();
-      vertices.push_back(v);
-      reversed << line << "\n";
-    } else if (tag == "f") {
-      std::array<int, 3> f{};
-      words >> f[0] >> f[2] >> f[1];  // reversed
-      faces.push_back({f[0] - 1, f[1] - 1, f[2] - 1});
-      reversed << "f " << f[0] << " " << f[1] << " " << f[2] << "\n";
-    }
+  reversed.precision(17);
+  for (const Eigen::Vector3d& v : obj.vertices)
+    reversed << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
+  for (std::array<int, 3>& f : obj.faces) {
+    std::swap(f[1], f[2]);
+    reversed << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << "\n";
   }
   test::write_file(dir / "inward.obj", reversed.str());
   std::filesystem::copy_file(test::sample_targets() / "man_bent.anchors.json", dir / "inward.anchors.json");
   const TargetRecord record = run_target(man(), discover_targets(dir).at(0));
   ASSERT_TRUE(record.ok) << record.error;
   for (Eigen::Index v = 0; v < record.corr_face.size(); ++v) {
-    const auto& f = faces[static_cast<std::size_t>(record.corr_face[v])];
+    const auto& f = obj.faces[static_cast<std::size_t>(record.corr_face[v])];
     Eigen::Vector3d p = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) p += record.corr_bary(v, k) * vertices[static_cast<std::size_t>(f[k])];
+    for (int k = 0; k < 3; ++k) p += record.corr_bary(v, k) * obj.vertices[static_cast<std::size_t>(f[k])];
     ASSERT_LT((p - record.remesh_vertices.row(v).transpose()).norm(), 1e-9) << "template vertex " << v;
   }
 }
