@@ -1,6 +1,8 @@
-// `xparam layout --source S --source-anchors A --target T --target-anchors B --out DIR [--check]`:
-// build the consistent base domain of one pair and write it for viewing.
+// `xparam layout --source S --source-anchors A --target T --target-anchors B --out DIR [--check]
+// [--optimize M] [--no-merge] [--no-stretch]`: build the consistent base domain of one pair,
+// optimize it as `xparam pair` would, and write it for viewing.
 #include "cli/commands.h"
+#include "cli/map_options.h"
 
 #include "core/anchor_placement.h"
 #include "core/anchors.h"
@@ -28,6 +30,7 @@ namespace {
 struct LayoutOptions {
   std::string source, source_anchors, target, target_anchors, out;
   bool check = false;
+  DomainOptimizationSettings optimization;  ///< --optimize none --no-merge --no-stretch: the layout as built
 };
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -105,7 +108,13 @@ int run_layout(const LayoutOptions& options) {
   seconds["patches"] = result.seconds.patches;
 
   start = std::chrono::steady_clock::now();
-  const LayoutCheck check = check_layout(result.layout);
+  const DomainOptimizationResult optimization = optimize_base_domain(result.layout, options.optimization);
+  seconds["optimize"] = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  LayoutCheckSettings check_settings;
+  check_settings.triangles = optimization.merges == 0;  // merged quads are polygons
+  const LayoutCheck check = check_layout(result.layout, check_settings);
   seconds["check"] = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
@@ -141,6 +150,7 @@ int run_layout(const LayoutOptions& options) {
   for (const LayoutEdge& e : layout.edges) edges.push_back({e.anchors[0], e.anchors[1]});
   out["edge_anchors"] = edges;
   out["patch_halfedges"] = layout.patches;
+  out["optimization"] = optimization_json(optimization);
   seconds["write"] = seconds_since(start);
   out["seconds"] = seconds;
   std::ofstream json_file(dir / "layout.json");
@@ -148,7 +158,8 @@ int run_layout(const LayoutOptions& options) {
   if (!json_file) throw Error((dir / "layout.json").string() + ": cannot write");
 
   std::cout << "layout: " << layout.n_anchors << " anchors, " << layout.edges.size() << " edges, "
-            << layout.patches.size() << " patches; refined +" << result.refined_vertices[0] << " / +"
+            << layout.patches.size() << " patches (" << optimization.swaps << " swaps, "
+            << optimization.merges << " merges); refined +" << result.refined_vertices[0] << " / +"
             << result.refined_vertices[1] << " vertices; "
             << (check.consistent() ? "consistent" : "INCONSISTENT") << "; written to " << dir.string()
             << "\n";
@@ -180,6 +191,7 @@ void add_layout_command(CLI::App& app) {
       ->required();
   command->add_flag("--check", options->check,
                     "Exit with status 2 when the consistency checker finds a violation");
+  add_optimization_options(*command, options->optimization);
   command->callback([options] {
     const int status = run_layout(*options);
     if (status != 0) throw CLI::RuntimeError(status);

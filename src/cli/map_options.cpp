@@ -5,24 +5,44 @@
 
 namespace xparam::cli {
 
-void add_map_options(CLI::App& command, PairSettings& settings) {
-  DomainOptimizationSettings& optimization = settings.optimization;
+void add_optimization_options(CLI::App& command, DomainOptimizationSettings& optimization) {
   std::vector<std::string> names;
   for (SwapMetric metric : all_swap_metrics()) names.emplace_back(to_string(metric));
   command
       .add_option_function<std::string>(
-          "--optimize", [&optimization](const std::string& name) { optimization.metric = parse_swap_metric(name); },
+          "--optimize",
+          [&optimization](const std::string& name) { optimization.metric = parse_swap_metric(name); },
           "Metric of the boundary swapping (paper section 4): none; ad or l2 (the map's angle distortion or "
-          "L2-stretch on the dense meshes, section 4.1; slow); area, dad, dl2, sdl, gar (on the base domains, "
+          "L2-stretch on the dense meshes, section 4.1; slow); area, dad, dl2, sdl, gar (on the base "
+          "domains, "
           "section 4.2); or balanced (section 4.3; the default)")
       ->check(CLI::IsMember(names));
-  command.add_flag("--merge,!--no-merge", optimization.merge,
-                   "Merge triangle pairs into quads where it lowers the domain distortion (paper section 5; default on)");
+  command.add_flag(
+      "--merge,!--no-merge", optimization.merge,
+      "Merge triangle pairs into quads where it lowers the domain distortion (paper section 5; default on)");
   command.add_flag("!--no-stretch", optimization.stretch,
                    "Keep the initial layout curves instead of straightening them into geodesics first");
+}
+
+void add_map_options(CLI::App& command, PairSettings& settings) {
+  add_optimization_options(command, settings.optimization);
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");
+}
+
+nlohmann::json optimization_json(const DomainOptimizationResult& optimization) {
+  return {{"metric", std::string(to_string(optimization.settings.metric))},
+          {"stretch", optimization.settings.stretch},
+          {"merge", optimization.settings.merge},
+          {"swaps", optimization.swaps},
+          {"refused_swaps", optimization.refused_swaps},
+          {"merges", optimization.merges},
+          {"vertices_added", {optimization.vertices_added[0], optimization.vertices_added[1]}},
+          {"seconds",
+           {{"stretch", optimization.seconds_stretch},
+            {"swap", optimization.seconds_swap},
+            {"merge", optimization.seconds_merge}}}};
 }
 
 }  // namespace xparam::cli

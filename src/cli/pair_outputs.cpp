@@ -1,5 +1,6 @@
 #include "cli/pair_outputs.h"
 
+#include "cli/map_options.h"
 #include "core/orientation.h"
 #include "io/mesh_writer.h"
 #include "io/text_file.h"
@@ -36,11 +37,13 @@ std::array<std::uint8_t, 3> stretch_color(double stretch) {
   const double red = std::clamp(2.0 * t - 1.0, 0.0, 1.0);
   const double blue = std::clamp(1.0 - 2.0 * t, 0.0, 1.0);
   const double green = 1.0 - red - blue;
-  return {static_cast<std::uint8_t>(std::lround(255 * red)), static_cast<std::uint8_t>(std::lround(255 * green)),
+  return {static_cast<std::uint8_t>(std::lround(255 * red)),
+          static_cast<std::uint8_t>(std::lround(255 * green)),
           static_cast<std::uint8_t>(std::lround(255 * blue))};
 }
 
-std::string correspondence_csv(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping) {
+std::string correspondence_csv(const LoadedMesh& source, const LoadedMesh& target,
+                               const PairMapping& mapping) {
   std::ostringstream out;
   out.precision(17);
   out << "vertex,face,b0,b1,b2\n";
@@ -53,7 +56,9 @@ std::string correspondence_csv(const LoadedMesh& source, const LoadedMesh& targe
 }
 
 // JSON numbers cannot be infinite; a degenerate map reports null there.
-nlohmann::json number(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); }
+nlohmann::json number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
+}
 
 nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping) {
   const Layout& layout = mapping.layout.layout;
@@ -72,18 +77,7 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
       {"refined_vertices", {mapping.layout.refined_vertices[0], mapping.layout.refined_vertices[1]}},
       {"degenerate_lpbds", {mapping.fallback_polygons[0], mapping.fallback_polygons[1]}},
       {"inverted_parameter_triangles", {mapping.inverted_triangles[0], mapping.inverted_triangles[1]}},
-      {"optimization",
-       {{"metric", std::string(to_string(mapping.optimization.settings.metric))},
-        {"stretch", mapping.optimization.settings.stretch},
-        {"merge", mapping.optimization.settings.merge},
-        {"swaps", mapping.optimization.swaps},
-        {"refused_swaps", mapping.optimization.refused_swaps},
-        {"merges", mapping.optimization.merges},
-        {"vertices_added", {mapping.optimization.vertices_added[0], mapping.optimization.vertices_added[1]}},
-        {"seconds",
-         {{"stretch", mapping.optimization.seconds_stretch},
-          {"swap", mapping.optimization.seconds_swap},
-          {"merge", mapping.optimization.seconds_merge}}}}},
+      {"optimization", optimization_json(mapping.optimization)},
       {"untangling",
        {{"enabled", mapping.settings.untangle},
         {"flipped_before", mapping.untangling.flipped_before},
@@ -113,7 +107,8 @@ nlohmann::json curves_json(const LoadedMesh& target, const PairMapping& mapping)
   for (const MappedCurve& curve : mapping.curves) {
     nlohmann::json points = nlohmann::json::array();
     for (size_t i = 0; i < curve.points.size(); ++i) {
-      const Eigen::Vector3d bary = to_file_order(target.file_order, curve.points[i].face, curve.points[i].bary);
+      const Eigen::Vector3d bary =
+          to_file_order(target.file_order, curve.points[i].face, curve.points[i].bary);
       const Eigen::Vector3d& x = curve.positions[i];
       points.push_back({{"face", curve.points[i].face},
                         {"barycentric", {bary[0], bary[1], bary[2]}},
@@ -138,7 +133,8 @@ void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& sour
   attributes.face_doubles.push_back({"l2_stretch", mapping.distortion.face_l2_stretch});
   attributes.face_doubles.push_back({"angle_distortion", mapping.distortion.face_angle_distortion});
   attributes.face_ints.push_back({"patch", mapping.face_patch});
-  for (double stretch : mapping.distortion.face_l2_stretch) attributes.face_colors.push_back(stretch_color(stretch));
+  for (double stretch : mapping.distortion.face_l2_stretch)
+    attributes.face_colors.push_back(stretch_color(stretch));
   write_ply(dir / "stretch.ply", remesh, faces, attributes);
 
   if (!mapping.curves.empty()) {

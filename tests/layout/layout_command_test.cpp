@@ -29,26 +29,33 @@ std::string ply_header(const fs::path& path) {
   return header;
 }
 
-TEST(LayoutCommand, WritesBothRefinedMeshesAndTheSummary) {
-  const fs::path dir = test::fresh_temp_dir("layout_command");
+nlohmann::json run_layout(const fs::path& dir, const std::string& extra) {
   const fs::path anchors = write_anchors(dir);
   std::string errors;
   const std::string arguments = "layout --source " + test::data_path("human_man.obj").string() +
                                 " --source-anchors " + anchors.string() + " --target " +
                                 test::data_path("human_woman.obj").string() + " --target-anchors " +
-                                anchors.string() + " --out " + (dir / "out").string() + " --check";
-  ASSERT_EQ(test::run_xparam(arguments, dir, errors), 0) << errors;
+                                anchors.string() + " --out " + (dir / "out").string() + " --check " + extra;
+  EXPECT_EQ(test::run_xparam(arguments, dir, errors), 0) << errors;
   std::ifstream in(dir / "out" / "layout.json");
-  const nlohmann::json summary = nlohmann::json::parse(in);
+  return nlohmann::json::parse(in);
+}
+
+TEST(LayoutCommand, WritesBothRefinedMeshesAndTheSummary) {
+  const fs::path dir = test::fresh_temp_dir("layout_command");
+  const nlohmann::json summary = run_layout(dir, "--optimize none --no-merge --no-stretch");
+  // The layout as built: a triangulation of the 8 anchors.
   EXPECT_EQ(summary["anchors"], 8);
   EXPECT_EQ(summary["edges"], 18);
   EXPECT_EQ(summary["patches"], 12);
   EXPECT_EQ(summary["consistent"], true);
   EXPECT_TRUE(summary["violations"].empty());
+  EXPECT_EQ(summary["optimization"]["swaps"], 0);
+  EXPECT_EQ(summary["optimization"]["merges"], 0);
   EXPECT_GE(summary["refined_vertices"]["source"].get<int>(), 0);
   EXPECT_GE(summary["refined_vertices"]["target"].get<int>(), 0);
   for (const char* stage :
-       {"load", "anchors", "candidates", "tree", "diagonals", "patches", "check", "write"}) {
+       {"load", "anchors", "candidates", "tree", "diagonals", "patches", "optimize", "check", "write"}) {
     EXPECT_TRUE(summary["seconds"].contains(stage)) << stage;
   }
   for (const char* side : {"source", "target"}) {
@@ -58,6 +65,20 @@ TEST(LayoutCommand, WritesBothRefinedMeshesAndTheSummary) {
     EXPECT_NE(header.find("property uchar red"), std::string::npos) << header;
     EXPECT_TRUE(fs::exists(dir / "out" / (std::string(side) + "_edges.obj")));
   }
+}
+
+TEST(LayoutCommand, ExportsTheOptimizedDomains) {
+  const fs::path dir = test::fresh_temp_dir("layout_command_optimized");
+  const nlohmann::json summary = run_layout(dir, "");
+  EXPECT_EQ(summary["consistent"], true) << summary["violations"];
+  EXPECT_EQ(summary["optimization"]["metric"], "balanced");
+  const int merges = summary["optimization"]["merges"].get<int>();
+  EXPECT_GE(merges, 1);  // merging is on by default, and the 8-anchor domains do merge
+  // Every merge removes one curve and one patch; Euler's formula holds throughout.
+  EXPECT_EQ(summary["edges"].get<int>(), 18 - merges);
+  EXPECT_EQ(summary["patches"].get<int>(), 12 - merges);
+  EXPECT_EQ(summary["patch_halfedges"].size(), summary["patches"].get<std::size_t>());
+  EXPECT_GT(summary["optimization"]["vertices_added"][0].get<int>(), 0);  // the curves were stretched
 }
 
 TEST(LayoutCommand, GenusMismatchExitsNonZeroWithAClearMessage) {
