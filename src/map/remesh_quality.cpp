@@ -34,7 +34,7 @@ std::vector<Eigen::Vector3d> vertex_normals(const Mesh& target, double& total_ar
 }
 
 // The interpolated unit normal of the target at a surface point (zero where it vanishes).
-Eigen::Vector3d interpolated_normal(const Mesh& target, const std::vector<Eigen::Vector3d>& normals,
+Eigen::Vector3d interpolate_normal(const Mesh& target, const std::vector<Eigen::Vector3d>& normals,
                                     const SurfacePoint& point) {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   int corner = 0;
@@ -89,11 +89,15 @@ RemeshReference::RemeshReference(const Mesh& target) : target_(&target) {
   vertex_normals_ = vertex_normals(target, target_area_);
 }
 
+Eigen::Vector3d RemeshReference::interpolated_normal(const SurfacePoint& point) const {
+  return interpolate_normal(*target_, vertex_normals_, point);
+}
+
 Eigen::Vector3d RemeshReference::normal(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c) const {
   const int shared = common_face(*target_, {&a, &b, &c});
   if (shared >= 0) return to_eigen(target_->calc_face_normal(target_->face_handle(shared)));
-  return interpolated_normal(*target_, vertex_normals_, a) + interpolated_normal(*target_, vertex_normals_, b) +
-         interpolated_normal(*target_, vertex_normals_, c);
+  return interpolate_normal(*target_, vertex_normals_, a) + interpolate_normal(*target_, vertex_normals_, b) +
+         interpolate_normal(*target_, vertex_normals_, c);
 }
 
 RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>& faces,

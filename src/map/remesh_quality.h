@@ -35,6 +35,10 @@ class RemeshReference {
   /// \pre every face index valid
   Eigen::Vector3d normal(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c) const;
 
+  /// The target's interpolated unit normal at a point (see measure_remesh_quality; zero where it
+  /// vanishes). \pre point.face valid
+  Eigen::Vector3d interpolated_normal(const SurfacePoint& point) const;
+
   /// Total area of the target, target units^2.
   double target_area() const { return target_area_; }
 

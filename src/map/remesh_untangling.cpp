@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,8 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <variant>
 
 namespace xparam {
 namespace {
@@ -57,8 +60,8 @@ std::pair<int, Eigen::Vector3d> locate_in_fan(const StarMove& move, const Eigen:
   return {best, best_bary / best_bary.sum()};
 }
 
-// One applied move: p in the star's open interior is re-fanned, anything else stays.
-SurfacePoint apply_move(const StarMove& move, const SurfacePoint& point) {
+// One applied star move: p in the star's open interior is re-fanned, anything else stays.
+SurfacePoint apply_star(const StarMove& move, const SurfacePoint& point) {
   const auto it = std::find(move.faces.begin(), move.faces.end(), point.face);
   if (it == move.faces.end()) return point;
   const int k = static_cast<int>(move.ring.size());
@@ -77,6 +80,175 @@ SurfacePoint apply_move(const StarMove& move, const SurfacePoint& point) {
   result.bary[(t + 1) % 3] = mu[1];
   result.bary[(t + 2) % 3] = mu[2];
   return result;
+}
+
+// The triangle of a flat triangulation that holds p (largest smallest barycentric, as in
+// locate_in_fan), with p's clamped barycentrics in the triangle's corner order.
+std::pair<int, Eigen::Vector3d> locate_in_disc(const RingMove& move, const std::vector<Eigen::Vector2d>& places,
+                                               const Eigen::Vector2d& p) {
+  int best = -1;
+  Eigen::Vector3d best_bary = Eigen::Vector3d::Zero();
+  double best_min = -std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < move.corners.size(); ++j) {
+    const std::array<int, 3>& c = move.corners[j];
+    const Eigen::Vector3d bary = barycentric2(p, places[c[0]], places[c[1]], places[c[2]]);
+    if (bary.minCoeff() > best_min) {
+      best_min = bary.minCoeff();
+      best = static_cast<int>(j);
+      best_bary = bary;
+    }
+  }
+  best_bary = best_bary.cwiseMax(0.0);
+  return {best, best_bary / best_bary.sum()};
+}
+
+// The disc face and local corner of a template point, or face -1 when the point is outside the
+// disc. Moved: whether the point lies where the move acts (positive weight on a vertex whose
+// place changes); points elsewhere, the centre and the disc's boundary among them, stay exactly.
+struct DiscHit {
+  int face = -1;
+  bool moved = false;
+};
+
+DiscHit find_in_disc(const RingMove& move, const SurfacePoint& point) {
+  DiscHit hit;
+  const auto it = std::find(move.faces.begin(), move.faces.end(), point.face);
+  if (it == move.faces.end()) return hit;
+  hit.face = static_cast<int>(it - move.faces.begin());
+  for (int c = 0; c < 3; ++c) {
+    const int u = move.corners[hit.face][c];
+    if (point.bary[c] > 0.0 && move.from[u] != move.to[u]) hit.moved = true;
+  }
+  return hit;
+}
+
+// One applied ring move: flatten, carry the from-triangulation onto the to-triangulation, and
+// locate the result in the flattened disc again.
+SurfacePoint apply_ring(const RingMove& move, const SurfacePoint& point) {
+  const DiscHit hit = find_in_disc(move, point);
+  if (!hit.moved) return point;
+  const std::array<int, 3>& c = move.corners[hit.face];
+  const Eigen::Vector2d flat = point.bary[0] * move.rest[c[0]] + point.bary[1] * move.rest[c[1]] + point.bary[2] * move.rest[c[2]];
+  const auto [m, lambda] = locate_in_disc(move, move.from, flat);
+  const std::array<int, 3>& d = move.corners[m];
+  const Eigen::Vector2d moved = lambda[0] * move.to[d[0]] + lambda[1] * move.to[d[1]] + lambda[2] * move.to[d[2]];
+  const auto [n, mu] = locate_in_disc(move, move.rest, moved);
+  return SurfacePoint{move.faces[n], mu};
+}
+
+SurfacePoint apply_move(const std::variant<StarMove, RingMove>& move, const SurfacePoint& point) {
+  if (const StarMove* star = std::get_if<StarMove>(&move)) return apply_star(*star, point);
+  return apply_ring(std::get<RingMove>(move), point);
+}
+
+// Twice the signed area of disc face j with the vertices at `places`.
+double disc_area2(const RingMove& move, const std::vector<Eigen::Vector2d>& places, int j) {
+  const std::array<int, 3>& c = move.corners[j];
+  return cross2(places[c[1]] - places[c[0]], places[c[2]] - places[c[0]]);
+}
+
+// The mean-value weight of edge (i, j) seen from i (Floater 2003): (tan(alpha/2) + tan(beta/2))
+// / |x_j - x_i|, alpha and beta the angles at i of the two faces beside the edge.
+double mean_value_weight(const Mesh& mesh, HalfedgeHandle h) {
+  const Eigen::Vector3d xi = position(mesh, mesh.from_vertex_handle(h));
+  const Eigen::Vector3d e = position(mesh, mesh.to_vertex_handle(h)) - xi;
+  auto half_tan = [&](const Eigen::Vector3d& other) {
+    const double angle = std::atan2(e.cross(other).norm(), e.dot(other));
+    return std::tan(0.5 * angle);
+  };
+  const Eigen::Vector3d next = position(mesh, mesh.to_vertex_handle(mesh.next_halfedge_handle(h))) - xi;
+  const HalfedgeHandle back = mesh.opposite_halfedge_handle(h);
+  const Eigen::Vector3d prev = position(mesh, mesh.to_vertex_handle(mesh.next_halfedge_handle(back))) - xi;
+  return (half_tan(next) + half_tan(prev)) / e.norm();
+}
+
+// The flattened two-ring disc of an interior vertex with `ring` its one-ring in
+// counter-clockwise order (local ids 1..k; the centre is 0, the boundary follows), or nothing
+// when the union of the ring vertices' stars is not a disc with the ring inside or the
+// flattening is not positive.
+std::optional<RingMove> flatten_disc(const Mesh& mesh, VertexHandle center) {
+  if (mesh.is_boundary(center)) return std::nullopt;
+  RingMove disc;
+  disc.center = center.idx();
+  std::vector<int> ring;
+  const HalfedgeHandle first = mesh.halfedge_handle(center);
+  HalfedgeHandle h = first;
+  do {
+    ring.push_back(mesh.to_vertex_handle(h).idx());
+    h = mesh.opposite_halfedge_handle(mesh.prev_halfedge_handle(h));
+  } while (h != first);
+  std::map<int, int> local{{center.idx(), 0}};
+  disc.vertices.push_back(center.idx());
+  for (int r : ring) {
+    if (mesh.is_boundary(mesh.vertex_handle(r)) || !local.emplace(r, static_cast<int>(disc.vertices.size())).second) {
+      return std::nullopt;
+    }
+    disc.vertices.push_back(r);
+    for (FaceHandle f : mesh.vf_range(mesh.vertex_handle(r))) disc.faces.push_back(f.idx());
+  }
+  std::sort(disc.faces.begin(), disc.faces.end());
+  disc.faces.erase(std::unique(disc.faces.begin(), disc.faces.end()), disc.faces.end());
+  const int n_inner = static_cast<int>(disc.vertices.size());
+  // Boundary: the disc faces' halfedges whose opposite face is outside, one cycle.
+  std::map<int, HalfedgeHandle> boundary_out;
+  for (int f : disc.faces) {
+    std::array<int, 3> c{};
+    int k = 0;
+    for (VertexHandle w : mesh.fv_range(mesh.face_handle(f))) {
+      if (local.emplace(w.idx(), static_cast<int>(disc.vertices.size())).second) disc.vertices.push_back(w.idx());
+      c[k++] = local.at(w.idx());
+    }
+    disc.corners.push_back(c);
+    for (HalfedgeHandle e : mesh.fh_range(mesh.face_handle(f))) {
+      const FaceHandle across = mesh.opposite_face_handle(e);
+      if (across.is_valid() && std::binary_search(disc.faces.begin(), disc.faces.end(), across.idx())) continue;
+      if (!boundary_out.emplace(mesh.from_vertex_handle(e).idx(), e).second) return std::nullopt;
+    }
+  }
+  const int n_vertices = static_cast<int>(disc.vertices.size());
+  if (static_cast<int>(boundary_out.size()) != n_vertices - n_inner) return std::nullopt;
+  std::vector<int> cycle;
+  std::vector<double> length{0.0};
+  HalfedgeHandle e = boundary_out.begin()->second;
+  for (int i = 0; i < n_vertices - n_inner; ++i) {
+    const int from = mesh.from_vertex_handle(e).idx();
+    if (local.at(from) < n_inner) return std::nullopt;
+    cycle.push_back(local.at(from));
+    length.push_back(length.back() + mesh.calc_edge_length(e));
+    const auto next = boundary_out.find(mesh.to_vertex_handle(e).idx());
+    if (next == boundary_out.end()) return std::nullopt;
+    e = next->second;
+  }
+  if (e != boundary_out.begin()->second) return std::nullopt;  // more than one boundary cycle
+  disc.rest.assign(n_vertices, Eigen::Vector2d::Zero());
+  for (std::size_t i = 0; i < cycle.size(); ++i) {
+    const double angle = 2.0 * std::numbers::pi * length[i] / length.back();
+    disc.rest[cycle[i]] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+  }
+  // Interior places: every inner vertex the mean-value combination of its neighbours.
+  Eigen::MatrixXd system = Eigen::MatrixXd::Zero(n_inner, n_inner);
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n_inner, 2);
+  for (int i = 0; i < n_inner; ++i) {
+    for (HalfedgeHandle out : mesh.voh_range(mesh.vertex_handle(disc.vertices[i]))) {
+      const double w = mean_value_weight(mesh, out);
+      if (!(w > 0.0) || !std::isfinite(w)) return std::nullopt;
+      const int j = local.at(mesh.to_vertex_handle(out).idx());
+      system(i, i) += w;
+      if (j < n_inner) {
+        system(i, j) -= w;
+      } else {
+        rhs.row(i) += w * disc.rest[j].transpose();
+      }
+    }
+  }
+  const Eigen::MatrixX2d inner = system.partialPivLu().solve(rhs);
+  for (int i = 0; i < n_inner; ++i) disc.rest[i] = inner.row(i).transpose();
+  for (std::size_t j = 0; j < disc.faces.size(); ++j) {
+    if (!(disc_area2(disc, disc.rest, static_cast<int>(j)) > 0.0)) return std::nullopt;
+  }
+  disc.from = disc.rest;
+  disc.to = disc.rest;
+  return disc;
 }
 
 // The flattened star of an interior vertex, or nothing when it has a boundary edge or a scaled
@@ -137,6 +309,25 @@ struct Score {
   double worst = -std::numeric_limits<double>::infinity();  // smallest face quality
 };
 
+// A ring move's cost over some remesh faces, compared lexicographically: flipped faces, then
+// how far they fold, then slack (faces barely positive, and how far the ring vertices slide).
+struct RingCost {
+  int flips = 0;
+  double fold = 0.0;
+  double slack = 0.0;
+
+  RingCost operator+(const RingCost& o) const { return {flips + o.flips, fold + o.fold, slack + o.slack}; }
+  bool operator<(const RingCost& o) const { return std::tie(flips, fold, slack) < std::tie(o.flips, o.fold, o.slack); }
+};
+
+// Ring-move constants: a cost at or above kInvalid flips marks a choice that does not embed the
+// disc; a flat face keeps at least kMinArea of its rest area; remesh faces of quality below
+// kComfort count as slack; a slide across the whole ring radius counts kMoveWeight.
+constexpr int kInvalid = 1 << 20;
+constexpr double kMinArea = 1e-3;
+constexpr double kComfort = 0.1;
+constexpr double kMoveWeight = 0.01;
+
 class Untangler {
  public:
   Untangler(const Mesh& source, std::vector<MappedPoint> images, const SurfaceMap& gamma, const Mesh& target,
@@ -167,6 +358,8 @@ class Untangler {
       }
     }
     moved_.assign(n, false);
+    changed_.assign(n, 0);
+    ring_failed_.assign(n, -1);
     flipped_.assign(faces_.size(), false);
     for (std::size_t f = 0; f < faces_.size(); ++f) flipped_[f] = quality(static_cast<int>(f), {}) < 0.0;
   }
@@ -185,10 +378,17 @@ class Untangler {
       vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
       ++result.rounds;
       bool changed = false;
-      for (int v : vertices) changed = try_vertex(v) || changed;
+      if (settings_.star_moves) {
+        for (int v : vertices) changed = try_vertex(v) || changed;
+      }
+      // What single vertices cannot undo (the star sweep stalled), their centres' rings may.
+      if (!changed && settings_.ring_moves) {
+        for (int v : vertices) changed = try_ring(v) || changed;
+      }
       if (!changed) break;
     }
     result.flipped_after = static_cast<int>(std::count(flipped_.begin(), flipped_.end(), true));
+    for (const auto& move : warp_.moves) result.ring_moves += static_cast<int>(std::holds_alternative<RingMove>(move));
     double sum = 0.0;
     for (VertexHandle v : source_.vertices()) {
       if (!moved_[v.idx()]) continue;
@@ -294,46 +494,379 @@ class Untangler {
       trial.points.reserve(affected.size());
       trial.images.reserve(affected.size());
       for (int u : affected) {
-        trial.points.push_back(apply_move(move, points_[u]));
+        trial.points.push_back(apply_star(move, points_[u]));
         trial.images.push_back(gamma_(trial.points.back()));
       }
       for (std::size_t a = 0; a < affected.size(); ++a) replaced[affected[a]] = &trial.images[a];
       trial.score = score(check, replaced);
     });
 
-    // Fewest flips, never a face that was not flipped before; then the best worst face.
+    // Fewest flips, then the best worst face.
     int best = -1;
     for (int i = 0; i < static_cast<int>(trials.size()); ++i) {
       const Score& s = trials[i].score;
-      if (!std::includes(before.flipped.begin(), before.flipped.end(), s.flipped.begin(), s.flipped.end())) continue;
       if (best < 0 || s.flipped.size() < trials[best].score.flipped.size() ||
           (s.flipped.size() == trials[best].score.flipped.size() && s.worst > trials[best].score.worst)) {
         best = i;
       }
     }
-    // Kept when it removes flips, or (a step towards removing them with a later move of a
-    // neighbour) when it leaves the same flips folded clearly less.
-    if (best < 0) return false;
-    const Score& chosen = trials[best].score;
-    const bool fewer = chosen.flipped.size() < before.flipped.size();
-    const bool less_folded = chosen.flipped.size() == before.flipped.size() &&
-                             chosen.worst > before.worst + settings_.min_gain;
-    if (!fewer && !less_folded) return false;
+    if (best < 0 || !improves(before, trials[best].score)) return false;
 
     star->to = targets[best];
-    warp_.moves.push_back(std::move(*star));
+    commit(std::move(*star), affected, trials[best].points, trials[best].images, check, trials[best].score);
+    return true;
+  }
+
+  // Candidate places of a ring move: for each radius (a fraction of the ring's mean flat radius
+  // `radius`), settings_.ring_angles evenly spaced angles about the disc's centre, then
+  // bisected where the images turn about the centre's image by more than twice that spacing (or
+  // backwards), a few times: where Gamma squeezes a wide wedge of the template into a narrow one
+  // on the target, the ring needs places the even grid steps over.
+  void ring_places(const RingMove& move, const MappedPoint& centre, double radius, std::vector<Eigen::Vector2d>& places,
+                   std::vector<MappedPoint>& images, std::vector<double>& turns) const {
+    const Eigen::Vector3d reference = reference_.normal(centre.on_input, centre.on_input, centre.on_input);
+    if (!(reference.norm() > 0.0)) return;  // no tangent plane to measure turns in: no places
+    const Eigen::Vector3d normal = reference.normalized();
+    const Eigen::Vector3d e1 = normal.unitOrthogonal();
+    const Eigen::Vector3d e2 = normal.cross(e1);
+    auto turn = [&](const MappedPoint& image) {
+      const Eigen::Vector3d d = image.position - centre.position;
+      return std::atan2(d.dot(e2), d.dot(e1));
+    };
+    const double spacing = 2.0 * std::numbers::pi / settings_.ring_angles;
+    for (double fraction : settings_.ring_radii) {
+      std::vector<double> angles;
+      for (int i = 0; i < settings_.ring_angles; ++i) angles.push_back(spacing * i);
+      const std::size_t first = places.size();
+      for (int level = 0;; ++level) {
+        // Evaluate the new angles (in parallel, each into its slot).
+        const std::size_t base = places.size();
+        places.resize(base + angles.size());
+        images.resize(places.size());
+        tbb::parallel_for(0, static_cast<int>(angles.size()), [&](int i) {
+          const double angle = angles[i];
+          places[base + i] = move.rest[0] + fraction * radius * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+          const auto [f, bary] = locate_in_disc(move, move.rest, places[base + i]);
+          images[base + i] = gamma_(SurfacePoint{move.faces[f], bary});
+        });
+        // Angles sorted with their sample index; refine the gaps that turn too far.
+        std::vector<std::pair<double, std::size_t>> order;
+        for (std::size_t i = first; i < places.size(); ++i) {
+          const Eigen::Vector2d d = places[i] - move.rest[0];
+          double angle = std::atan2(d.y(), d.x());
+          if (angle < 0.0) angle += 2.0 * std::numbers::pi;
+          order.emplace_back(angle, i);
+        }
+        std::sort(order.begin(), order.end());
+        if (level == settings_.ring_refinements) break;
+        angles.clear();
+        for (std::size_t i = 0; i < order.size(); ++i) {
+          const auto& [a, ia] = order[i];
+          const auto& [b, ib] = order[(i + 1) % order.size()];
+          double step = turn(images[ib]) - turn(images[ia]);
+          step = std::remainder(step, 2.0 * std::numbers::pi);
+          if (step >= 0.0 && step <= 2.0 * spacing) continue;
+          const double gap = i + 1 < order.size() ? b - a : b + 2.0 * std::numbers::pi - a;
+          angles.push_back(a + 0.5 * gap);
+        }
+        if (angles.empty()) break;
+      }
+    }
+    turns.clear();
+    for (const MappedPoint& image : images) turns.push_back(turn(image));
+  }
+
+  // Record a kept move: the new points and images of the vertices it carries, the faces it
+  // changed.
+  void commit(std::variant<StarMove, RingMove> move, const std::vector<int>& affected,
+              const std::vector<SurfacePoint>& points, const std::vector<MappedPoint>& images,
+              const std::vector<int>& check, const Score& score) {
+    warp_.moves.push_back(std::move(move));
+    ++commits_;
     for (std::size_t a = 0; a < affected.size(); ++a) {
       const int u = affected[a];
-      points_[u] = trials[best].points[a];
-      images_[u] = trials[best].images[a];
+      changed_[u] = commits_;
+      points_[u] = points[a];
+      images_[u] = images[a];
       if (!moved_[u]) {
         moved_[u] = true;
         moved_list_.insert(std::lower_bound(moved_list_.begin(), moved_list_.end(), u), u);
       }
     }
     for (int f : check) flipped_[f] = false;
-    for (int f : trials[best].score.flipped) flipped_[f] = true;
+    for (int f : score.flipped) flipped_[f] = true;
+  }
+
+  // Faces around any of `vertices`, ascending.
+  std::vector<int> faces_around(const std::vector<int>& vertices) const {
+    std::vector<int> faces;
+    for (int u : vertices) {
+      for (FaceHandle f : source_.vf_range(source_.vertex_handle(u))) faces.push_back(f.idx());
+    }
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
+  }
+
+  // A ring move around v: v stays, its one-ring vertices (those free to move) are re-placed
+  // jointly inside v's flattened two-ring disc.
+  bool try_ring(int v) {
+    const VertexHandle vh = source_.vertex_handle(v);
+    bool touches_flip = false;
+    for (FaceHandle f : source_.vf_range(vh)) touches_flip = touches_flip || flipped_[f.idx()];
+    if (!touches_flip) return false;
+    std::optional<RingMove> disc = flatten_disc(source_, vh);
+    if (!disc) return false;
+    RingMove& move = *disc;
+    // Not again while nothing it looks at (the disc's vertices, points moved into the disc) has
+    // changed since it last failed here: it would fail the same way.
+    if (ring_failed_[v] >= 0) {
+      bool changed = false;
+      for (int u : move.vertices) changed = changed || changed_[u] > ring_failed_[v];
+      for (int u : moved_list_) {
+        changed = changed || (changed_[u] > ring_failed_[v] &&
+                              std::binary_search(move.faces.begin(), move.faces.end(), points_[u].face));
+      }
+      if (!changed) return false;
+    }
+    ring_failed_[v] = commits_;
+    const int k = static_cast<int>(source_.valence(vh));  // ring vertices are local ids 1..k
+
+    // Current places of the ring vertices (earlier moves may have slid them inside the disc).
+    for (int j = 1; j <= k; ++j) {
+      const SurfacePoint& p = points_[move.vertices[j]];
+      const auto it = std::find(move.faces.begin(), move.faces.end(), p.face);
+      if (it == move.faces.end()) return false;
+      const std::array<int, 3>& c = move.corners[it - move.faces.begin()];
+      move.from[j] = p.bary[0] * move.rest[c[0]] + p.bary[1] * move.rest[c[1]] + p.bary[2] * move.rest[c[2]];
+    }
+    const int n_faces = static_cast<int>(move.faces.size());
+    for (int j = 0; j < n_faces; ++j) {
+      if (!(disc_area2(move, move.from, j) > kMinArea * disc_area2(move, move.rest, j))) return false;
+    }
+
+    // Each disc face depends on one ring vertex (slot j-1) or two consecutive ones (the pair
+    // starting at slot j-1); anything else breaks the chain the search relies on.
+    std::vector<std::vector<int>> single(k);
+    std::vector<std::vector<int>> pair(k);
+    for (int j = 0; j < n_faces; ++j) {
+      std::vector<int> slots;
+      for (int u : move.corners[j]) {
+        if (u >= 1 && u <= k) slots.push_back(u - 1);
+      }
+      std::sort(slots.begin(), slots.end());
+      if (slots.size() == 1) {
+        single[slots[0]].push_back(j);
+      } else if (slots.size() == 2 && slots[1] == slots[0] + 1) {
+        pair[slots[0]].push_back(j);
+      } else if (slots.size() == 2 && slots[0] == 0 && slots[1] == k - 1) {
+        pair[k - 1].push_back(j);
+      } else {
+        return false;
+      }
+    }
+
+    // Candidate places: circles about the centre, each sampled where Gamma turns fast.
+    double radius = 0.0;
+    for (int j = 1; j <= k; ++j) radius += (move.rest[j] - move.rest[0]).norm() / k;
+    std::vector<Eigen::Vector2d> places;
+    std::vector<MappedPoint> place_images;
+    std::vector<double> place_turns;  // direction of each place's image about the centre's, in [-pi, pi]
+    ring_places(move, images_[v], radius, places, place_images, place_turns);
+
+    // Options of ring slot j: stay (option 0), or any grid place (option 1 + i) when free.
+    const int n_options = 1 + static_cast<int>(places.size());
+    // The search scores remesh faces with the reference normal summed from the corners'
+    // interpolated normals (measure_remesh_quality's rule where the corners share no target
+    // face); the move it picks is then judged by the exact test.
+    const int n_disc = static_cast<int>(move.vertices.size());
+    std::vector<Eigen::Vector3d> stay_normal(n_disc);
+    for (int u = 0; u < n_disc; ++u) stay_normal[u] = reference_.interpolated_normal(images_[move.vertices[u]].on_input);
+    std::vector<Eigen::Vector3d> place_normal(places.size());
+    for (std::size_t i = 0; i < places.size(); ++i) place_normal[i] = reference_.interpolated_normal(place_images[i].on_input);
+    std::vector<Eigen::Vector2d> trial = move.from;
+    std::vector<const Eigen::Vector3d*> at(n_disc);
+    std::vector<const Eigen::Vector3d*> normal(n_disc);
+    auto reset = [&](int u) {
+      trial[u] = move.from[u];
+      at[u] = &images_[move.vertices[u]].position;
+      normal[u] = &stay_normal[u];
+    };
+    for (int u = 0; u < n_disc; ++u) reset(u);
+    auto approximate_quality = [&](int f) {
+      const std::array<int, 3>& c = move.corners[f];
+      const Eigen::Vector3d n = (*at[c[1]] - *at[c[0]]).cross(*at[c[2]] - *at[c[0]]);
+      const Eigen::Vector3d reference = *normal[c[0]] + *normal[c[1]] + *normal[c[2]];
+      const double dot = n.dot(reference);
+      const double length = reference.norm();
+      if (n.norm() == 0.0 || length == 0.0) return 0.0;
+      const double rho = 0.5 * dot / length / (face_area_[move.faces[f]] * scale_);
+      if (dot < 0.0) return std::min(rho, -kTiny);
+      return std::min(rho, 1.0 / rho);
+    };
+    // Cost of the given disc faces with ring slot j at option o for each (j, o); infinite when a
+    // flat face is not positive.
+    auto cost_of = [&](const std::vector<int>& faces, std::initializer_list<std::pair<int, int>> slot_options) {
+      RingCost cost;
+      for (const auto& [j, o] : slot_options) {
+        if (o == 0) continue;
+        trial[j + 1] = places[o - 1];
+        at[j + 1] = &place_images[o - 1].position;
+        normal[j + 1] = &place_normal[o - 1];
+        cost.slack += kMoveWeight * (trial[j + 1] - move.from[j + 1]).norm() / radius;
+      }
+      for (int f : faces) {
+        if (!(disc_area2(move, trial, f) > kMinArea * disc_area2(move, move.rest, f))) cost.flips = kInvalid;
+      }
+      for (int f : faces) {
+        if (cost.flips >= kInvalid) break;
+        const double q = approximate_quality(f);
+        if (q < 0.0) {
+          ++cost.flips;
+          cost.fold -= q;
+        } else {
+          cost.slack += std::max(0.0, kComfort - q);
+        }
+      }
+      for (const auto& [j, o] : slot_options) reset(j + 1);
+      return cost;
+    };
+    std::vector<std::vector<int>> options(k);
+    std::vector<std::vector<RingCost>> unary(k);
+    std::vector<std::vector<int>> direction(k);  // per option: its image's direction bucket, -1 staying
+    for (int j = 0; j < k; ++j) {
+      const int last = blocked_[move.vertices[j + 1]] ? 1 : n_options;
+      std::vector<std::pair<RingCost, int>> ranked;
+      for (int o = 0; o < last; ++o) {
+        const RingCost c = cost_of(single[j], {{j, o}});
+        if (c.flips < kInvalid) ranked.emplace_back(c, o);
+      }
+      if (ranked.empty()) return false;
+      // Staying is always an option (when valid); then, in every direction about the centre's
+      // image, the places cheapest on the slot's own faces (the fan needs images all around).
+      const auto by_cost = [](const auto& a, const auto& b) { return std::tie(a.first, a.second) < std::tie(b.first, b.second); };
+      const auto rest = ranked.begin() + (ranked.front().second == 0 ? 1 : 0);
+      std::sort(rest, ranked.end(), by_cost);
+      std::vector<int> per_direction(settings_.ring_angles, 0);
+      for (const auto& [c, o] : ranked) {
+        int bucket = -1;  // staying
+        if (o != 0) {
+          const double turn = place_turns[o - 1] / (2.0 * std::numbers::pi) + 0.5;
+          bucket = std::clamp(static_cast<int>(turn * settings_.ring_angles), 0, settings_.ring_angles - 1);
+          if (per_direction[bucket]++ >= settings_.ring_options) continue;
+        }
+        options[j].push_back(o);
+        unary[j].push_back(c);
+        direction[j].push_back(bucket);
+      }
+    }
+    // binary[j][a][b]: the faces of slots j and j+1 with option a of j and option b of j+1.
+    std::vector<std::vector<std::vector<RingCost>>> binary(k);
+    for (int j = 0; j < k; ++j) {
+      const int next = (j + 1) % k;
+      binary[j].assign(options[j].size(), std::vector<RingCost>(options[next].size()));
+      for (std::size_t a = 0; a < options[j].size(); ++a) {
+        for (std::size_t b = 0; b < options[next].size(); ++b) {
+          binary[j][a][b] = cost_of(pair[j], {{j, options[j][a]}, {next, options[next][b]}});
+        }
+      }
+    }
+
+    // Cheapest choice around the cycle: fix an option of the slot with the fewest (only the
+    // cheapest in each direction: the exact enumeration would cost options^3 per slot), chain
+    // through the other slots in order, close the cycle.
+    int start = 0;
+    for (int j = 1; j < k; ++j) {
+      if (options[j].size() < options[start].size()) start = j;
+    }
+    std::vector<std::size_t> firsts;
+    std::vector<bool> seen(settings_.ring_angles + 1, false);
+    for (std::size_t a = 0; a < options[start].size(); ++a) {
+      const int bucket = direction[start][a];
+      if (seen[bucket + 1]) continue;
+      seen[bucket + 1] = true;
+      firsts.push_back(a);
+    }
+    auto slot = [&](int t) { return (start + t) % k; };
+    RingCost best_total;
+    best_total.flips = kInvalid;
+    std::vector<int> best_choice;  // per slot, an index into its options
+    std::vector<std::vector<RingCost>> total(k);
+    std::vector<std::vector<int>> back(k);
+    for (std::size_t first : firsts) {
+      total[0].assign(options[start].size(), RingCost{kInvalid, 0.0, 0.0});
+      total[0][first] = unary[start][first];
+      for (int t = 1; t < k; ++t) {
+        const int j = slot(t);
+        const int i = slot(t - 1);
+        total[t].assign(options[j].size(), RingCost{kInvalid, 0.0, 0.0});
+        back[t].assign(options[j].size(), -1);
+        for (std::size_t a = 0; a < options[i].size(); ++a) {
+          if (total[t - 1][a].flips >= kInvalid) continue;
+          for (std::size_t b = 0; b < options[j].size(); ++b) {
+            if (binary[i][a][b].flips >= kInvalid) continue;
+            const RingCost c = total[t - 1][a] + binary[i][a][b] + unary[j][b];
+            if (c < total[t][b]) {
+              total[t][b] = c;
+              back[t][b] = static_cast<int>(a);
+            }
+          }
+        }
+      }
+      const int last = slot(k - 1);
+      for (std::size_t b = 0; b < options[last].size(); ++b) {
+        if (total[k - 1][b].flips >= kInvalid || binary[last][b][first].flips >= kInvalid) continue;
+        const RingCost c = total[k - 1][b] + binary[last][b][first];
+        if (!(c < best_total)) continue;
+        best_total = c;
+        best_choice.assign(k, 0);
+        int choice = static_cast<int>(b);
+        for (int t = k - 1; t >= 0; --t) {
+          best_choice[slot(t)] = choice;
+          if (t > 0) choice = back[t][choice];
+        }
+      }
+    }
+    if (best_total.flips >= kInvalid) return false;
+    bool any = false;
+    for (int j = 0; j < k; ++j) {
+      const int o = options[j][best_choice[j]];
+      move.to[j + 1] = o == 0 ? move.from[j + 1] : places[o - 1];
+      any = any || o != 0;
+    }
+    if (!any) return false;
+
+    // The move carries the ring vertices and any moved vertex inside the disc: the exact verdict.
+    std::vector<int> affected;
+    std::vector<int> candidates = moved_list_;
+    for (int j = 1; j <= k; ++j) candidates.push_back(move.vertices[j]);
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    for (int u : candidates) {
+      if (find_in_disc(move, points_[u]).moved) affected.push_back(u);
+    }
+    const std::vector<int> check = faces_around(affected);
+    const Score before = score(check, {});
+    std::vector<SurfacePoint> points(affected.size());
+    std::vector<MappedPoint> images(affected.size());
+    tbb::parallel_for(0, static_cast<int>(affected.size()), [&](int a) {
+      points[a] = apply_ring(move, points_[affected[a]]);
+      images[a] = gamma_(points[a]);
+    });
+    std::map<int, const MappedPoint*> after_images;
+    for (std::size_t a = 0; a < affected.size(); ++a) after_images[affected[a]] = &images[a];
+    const Score after = score(check, after_images);
+    if (!improves(before, after)) return false;
+    commit(std::move(move), affected, points, images, check, after);
     return true;
+  }
+
+  // A move is kept when it leaves fewer flipped faces among those it changes (a fold may move
+  // to a face where another vertex can undo it), or (a step towards removing them with a later
+  // move of a neighbour) as many, clearly less folded.
+  bool improves(const Score& before, const Score& after) const {
+    if (after.flipped.size() != before.flipped.size()) return after.flipped.size() < before.flipped.size();
+    return after.worst > before.worst + settings_.min_gain;
   }
 
   // True when the move would carry `point` (it lies in the star's open interior).
@@ -383,6 +916,9 @@ class Untangler {
   std::vector<bool> blocked_;          // #V: an anchor in the open star
   std::vector<bool> moved_;            // #V: phi(x_i) != x_i
   std::vector<int> moved_list_;        // the moved vertices, ascending
+  int commits_ = 0;                    // moves kept so far
+  std::vector<int> changed_;           // #V: moves kept when phi(x_i) last changed
+  std::vector<int> ring_failed_;       // #V: moves kept when a ring move about it last failed, or -1
   std::vector<bool> flipped_;          // #F: remesh face flipped now
   TemplateWarp warp_;
 };
@@ -391,7 +927,7 @@ class Untangler {
 
 SurfacePoint TemplateWarp::operator()(const SurfacePoint& point) const {
   SurfacePoint result = point;
-  for (const StarMove& move : moves) result = apply_move(move, result);
+  for (const auto& move : moves) result = apply_move(move, result);
   return result;
 }
 

@@ -12,8 +12,19 @@
 /// then re-fans the flat polygon from a new centre inside its kernel (every triangle
 /// (centre, v_j, v_j+1) positive, which is what makes the move a homeomorphism of the star that
 /// fixes its boundary). The vertices of flipped remesh faces are visited in index order, a few
-/// Gauss-Seidel rounds; a move is kept when it creates no flipped face around the vertices it
-/// changes and removes some, or leaves them clearly less folded.
+/// Gauss-Seidel rounds; a move is kept when it leaves fewer flipped faces around the vertices it
+/// changes, or as many but clearly less folded.
+///
+/// A fold at a vertex that may not move (an anchor) often needs its whole one-ring to move at
+/// once: Gamma may squeeze the ring's images to one side of the anchor's image, and no single
+/// ring vertex can reach the other side without folding a neighbour. A ring move fixes the
+/// centre vertex and the boundary of its two-ring disc, flattens that disc (mean-value weights,
+/// boundary on a circle by arc length: an embedding, Floater 2003), and re-places the one-ring
+/// vertices inside it, every disc triangle staying positive; the new places are chosen jointly
+/// (dynamic programming around the ring, each remesh face of the disc depending on at most two
+/// consecutive ring vertices, among places sampled on circles about the centre and refined where
+/// Gamma turns fast). Ring moves are tried when a sweep of star moves changed nothing, and kept
+/// by the same rule.
 
 #include "core/mesh.h"
 #include "core/surface_point.h"
@@ -24,6 +35,7 @@
 
 #include <array>
 #include <functional>
+#include <variant>
 #include <vector>
 
 namespace xparam {
@@ -41,6 +53,22 @@ struct UntangleSettings {
   /// it (signed area over the template's, scaled to the target's total) by this much; it lets
   /// two neighbours unfold a face together that neither can alone.
   double min_gain = 0.01;
+  bool star_moves = true;  ///< try star moves of the vertices of flipped faces
+  /// Try ring moves around the vertices of faces a star sweep left flipped (every sweep when
+  /// star moves are off).
+  bool ring_moves = true;
+  /// A ring move's candidate places for the ring vertices: this many evenly spaced angles about
+  /// the centre of the flat disc ...
+  int ring_angles = 24;
+  /// ... at these radii, as fractions of the ring's mean flat radius (plus each ring vertex's
+  /// current place).
+  std::vector<double> ring_radii = {0.4, 0.65, 0.9, 1.15, 1.4};
+  /// ... refined this many times by bisection where the images turn fast about the centre's.
+  int ring_refinements = 5;
+  /// Places kept per ring vertex and direction of their image about the centre's (ring_angles
+  /// directions) for the joint choice, besides staying: the cheapest on the faces that vertex
+  /// alone decides.
+  int ring_options = 8;
 };
 
 /// One star move of phi: vertex `center`'s flattened star re-fanned from `from` to `to`.
@@ -53,9 +81,25 @@ struct StarMove {
   Eigen::Vector2d to = Eigen::Vector2d::Zero();    ///< fan centre after the move (in the kernel)
 };
 
-/// phi: star moves applied in order (the composition of homeomorphisms of the template).
+/// One ring move of phi: the two-ring disc of vertex `center` flattened (`rest`), its
+/// triangulation with the one-ring vertices at their places before the move (`from`) mapped
+/// face by face affinely onto the one with them at their places after it (`to`). The centre
+/// and the disc's boundary vertices have rest == from == to.
+struct RingMove {
+  int center = -1;                         ///< template input vertex, fixed
+  /// The disc's template vertices: the centre, its one-ring counter-clockwise (the vertices the
+  /// move may re-place), then the disc's boundary.
+  std::vector<int> vertices;
+  std::vector<int> faces;                  ///< the disc's template faces
+  std::vector<std::array<int, 3>> corners; ///< per face: its corners in fv order, as indices into `vertices`
+  std::vector<Eigen::Vector2d> rest;       ///< per vertex: flattened position (the embedding of the disc)
+  std::vector<Eigen::Vector2d> from;       ///< per vertex: place before the move (every face positive)
+  std::vector<Eigen::Vector2d> to;         ///< per vertex: place after the move (every face positive)
+};
+
+/// phi: star and ring moves applied in order (the composition of homeomorphisms of the template).
 struct TemplateWarp {
-  std::vector<StarMove> moves;
+  std::vector<std::variant<StarMove, RingMove>> moves;
 
   /// phi(point) for a point of the template input mesh (face + barycentrics in fv order).
   SurfacePoint operator()(const SurfacePoint& point) const;
@@ -69,6 +113,7 @@ struct UntangleResult {
   int flipped_before = 0;                     ///< flipped remesh faces of Gamma
   int flipped_after = 0;                      ///< flipped remesh faces of Gamma . phi
   int moved_vertices = 0;                     ///< template vertices with phi(x_i) != x_i
+  int ring_moves = 0;                         ///< ring moves among warp.moves
   double max_move = 0.0;   ///< largest |phi(x_i) - x_i|, template units
   double mean_move = 0.0;  ///< mean |phi(x_i) - x_i| over the moved vertices, template units
   int rounds = 0;          ///< Gauss-Seidel rounds run
@@ -82,7 +127,9 @@ using SurfaceMap = std::function<MappedPoint(const SurfacePoint&)>;
 /// Slide template vertices of flipped remesh faces inside their stars until the remesh of
 /// Gamma . phi has no flipped face (measure_remesh_quality's test) or no move helps.
 /// Vertices whose open star holds an anchor (`fixed_points`) never move, nor do vertices with
-/// a boundary edge or a star that cannot be flattened (a scaled angle >= pi).
+/// a boundary edge or a star that cannot be flattened (a scaled angle >= pi). A ring move keeps
+/// its centre, its disc's boundary and every one-ring vertex with an anchor in its open star in
+/// place, so it fixes every anchor too.
 /// \param source        the template input mesh (closed, oriented)
 /// \param images        #V: Gamma(x_i)
 /// \param gamma         Gamma, thread-safe (called in parallel)

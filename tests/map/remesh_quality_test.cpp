@@ -173,5 +173,24 @@ TEST(RemeshQuality, RejectsBadInput) {
   EXPECT_THROW(measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target), ParamError);
 }
 
+// The octahedron's vertex normals are the axes (four faces, equal areas, symmetric): at a vertex
+// the interpolated normal is its axis, at a face's centre the three axes' mean, which on the
+// octahedron is the face normal (1, 1, 1) / sqrt(3) up to the octant's signs.
+TEST(RemeshQuality, InterpolatedNormalOfTheOctahedron) {
+  const Mesh mesh = octahedron();
+  const RemeshReference reference(mesh);
+  for (VertexHandle v : mesh.vertices()) {
+    const Eigen::Vector3d axis = position(mesh, v);
+    EXPECT_LT((reference.interpolated_normal(at_vertex(mesh, v.idx())) - axis).norm(), 1e-12) << v.idx();
+  }
+  for (FaceHandle f : mesh.faces()) {
+    const SurfacePoint centre{f.idx(), Eigen::Vector3d::Constant(1.0 / 3.0)};
+    const Eigen::Vector3d face_normal = to_eigen(mesh.calc_face_normal(f));
+    EXPECT_LT((reference.interpolated_normal(centre) - face_normal).norm(), 1e-12) << f.idx();
+    // Three corners on one face: the reference normal is that face's.
+    EXPECT_LT((reference.normal(centre, centre, centre) - face_normal).norm(), 1e-12);
+  }
+}
+
 }  // namespace
 }  // namespace xparam
