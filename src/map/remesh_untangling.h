@@ -7,13 +7,9 @@
 /// homeomorphism of the template that slides a few template vertices inside their own star:
 /// Gamma . phi is still a bijection, and the remesh then samples it at phi(x_i).
 ///
-/// phi is a sequence of star moves. A star move of vertex v flattens v's star (its one-ring,
-/// angles at v scaled to sum to 2 pi, spoke lengths kept: one affine map per star triangle),
-/// then re-fans the flat polygon from a new centre inside its kernel (every triangle
-/// (centre, v_j, v_j+1) positive, which is what makes the move a homeomorphism of the star that
-/// fixes its boundary). The vertices of flipped remesh faces are visited in index order, a few
-/// Gauss-Seidel rounds; a move is kept when it leaves fewer flipped faces around the vertices it
-/// changes, or as many but clearly less folded.
+/// phi (map/template_warp.h) is a sequence of star moves and ring moves. The vertices of flipped remesh faces
+/// are visited in index order, a few Gauss-Seidel rounds; a move is kept when it leaves fewer flipped faces
+/// around the vertices it changes, or as many but clearly less folded.
 ///
 /// A fold at a vertex that may not move (an anchor) often needs its whole one-ring to move at
 /// once: Gamma may squeeze the ring's images to one side of the anchor's image, and no single
@@ -30,6 +26,7 @@
 #include "core/surface_point.h"
 #include "map/cross_map.h"
 #include "map/remesh_quality.h"
+#include "map/template_warp.h"
 
 #include <Eigen/Core>
 
@@ -71,40 +68,6 @@ struct UntangleSettings {
   int ring_options = 8;
 };
 
-/// One star move of phi: vertex `center`'s flattened star re-fanned from `from` to `to`.
-struct StarMove {
-  int center = -1;                    ///< template input vertex
-  std::vector<int> faces;             ///< the star's faces (v, v_j, v_j+1), counter-clockwise
-  std::vector<int> center_slot;       ///< per face: the centre's corner in the face's fv order
-  std::vector<Eigen::Vector2d> ring;  ///< flattened v_j (centre at the origin), same order as faces
-  Eigen::Vector2d from = Eigen::Vector2d::Zero();  ///< fan centre before the move (in the kernel)
-  Eigen::Vector2d to = Eigen::Vector2d::Zero();    ///< fan centre after the move (in the kernel)
-};
-
-/// One ring move of phi: the two-ring disc of vertex `center` flattened (`rest`), its
-/// triangulation with the one-ring vertices at their places before the move (`from`) mapped
-/// face by face affinely onto the one with them at their places after it (`to`). The centre
-/// and the disc's boundary vertices have rest == from == to.
-struct RingMove {
-  int center = -1;                         ///< template input vertex, fixed
-  /// The disc's template vertices: the centre, its one-ring counter-clockwise (the vertices the
-  /// move may re-place), then the disc's boundary.
-  std::vector<int> vertices;
-  std::vector<int> faces;                  ///< the disc's template faces
-  std::vector<std::array<int, 3>> corners; ///< per face: its corners in fv order, as indices into `vertices`
-  std::vector<Eigen::Vector2d> rest;       ///< per vertex: flattened position (the embedding of the disc)
-  std::vector<Eigen::Vector2d> from;       ///< per vertex: place before the move (every face positive)
-  std::vector<Eigen::Vector2d> to;         ///< per vertex: place after the move (every face positive)
-};
-
-/// phi: star and ring moves applied in order (the composition of homeomorphisms of the template).
-struct TemplateWarp {
-  std::vector<std::variant<StarMove, RingMove>> moves;
-
-  /// phi(point) for a point of the template input mesh (face + barycentrics in fv order).
-  SurfacePoint operator()(const SurfacePoint& point) const;
-};
-
 /// What untangle_remesh did.
 struct UntangleResult {
   TemplateWarp warp;                          ///< phi
@@ -114,7 +77,7 @@ struct UntangleResult {
   int flipped_after = 0;                      ///< flipped remesh faces of Gamma . phi
   int moved_vertices = 0;                     ///< template vertices with phi(x_i) != x_i
   int ring_moves = 0;                         ///< ring moves among warp.moves
-  double max_move = 0.0;   ///< largest |phi(x_i) - x_i|, template units
+  double max_move = 0.0;                      ///< largest |phi(x_i) - x_i|, template units
   double mean_move = 0.0;  ///< mean |phi(x_i) - x_i| over the moved vertices, template units
   int rounds = 0;          ///< Gauss-Seidel rounds run
   double seconds = 0.0;    ///< wall clock (not deterministic)
