@@ -184,15 +184,6 @@ std::vector<Configuration> configurations() {
   return list;
 }
 
-double bbox_diagonal(const Mesh& mesh) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-  for (VertexHandle v : mesh.vertices()) {
-    lo = lo.cwiseMin(position(mesh, v));
-    hi = hi.cwiseMax(position(mesh, v));
-  }
-  return (hi - lo).norm();
-}
-
 // Mean distance from the image of template vertex i to its true counterpart truth[i] on the
 // target, over the target's bounding-box diagonal.
 double ground_truth_error(const PairMapping& map, const Mesh& target, const std::vector<int>& truth) {
@@ -200,7 +191,7 @@ double ground_truth_error(const PairMapping& map, const Mesh& target, const std:
   double sum = 0.0;
   for (Eigen::Index v = 0; v < n; ++v)
     sum += (map.remesh_vertices.row(v).transpose() - position(target, VertexHandle(truth[v]))).norm();
-  return sum / static_cast<double>(n) / bbox_diagonal(target);
+  return sum / static_cast<double>(n) / bounding_box_diagonal(target);
 }
 
 std::vector<int> identity(int n) {

@@ -20,16 +20,6 @@ std::string in_quotes(const std::string& name) { return "\"" + name + "\""; }
   throw InputError(where(anchor) + ": anchor " + in_quotes(anchor.name) + ": " + what);
 }
 
-double bounding_box_diagonal(const Mesh& mesh) {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = -lo;
-  for (VertexHandle v : mesh.vertices()) {
-    lo = lo.cwiseMin(position(mesh, v));
-    hi = hi.cwiseMax(position(mesh, v));
-  }
-  return mesh.n_vertices() == 0 ? 0.0 : (hi - lo).norm();
-}
-
 // Places anchors one after the other on a working copy of the refined mesh.
 class AnchorPlacer {
  public:

@@ -17,17 +17,6 @@ std::string curve_where(const FeatureCurveSet& set, const FeatureCurveSpec& curv
 // Two points closer than this (a fraction of the bounding-box diagonal) are one place.
 constexpr double kSamePlace = 1e-12;
 
-double bounding_box_diagonal(const Mesh& mesh) {
-  if (mesh.n_vertices() == 0) return 0.0;
-  Eigen::Vector3d lo = position(mesh, mesh.vertex_handle(0));
-  Eigen::Vector3d hi = lo;
-  for (VertexHandle v : mesh.vertices()) {
-    lo = lo.cwiseMin(position(mesh, v));
-    hi = hi.cwiseMax(position(mesh, v));
-  }
-  return (hi - lo).norm();
-}
-
 }  // namespace
 
 std::vector<FeatureCurve> validate_curves(const FeatureCurveSet& set, const Mesh& input) {

@@ -34,4 +34,17 @@ inline Mesh::Point to_point(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.
 /// Position of vertex `v` as an Eigen vector.
 inline Eigen::Vector3d position(const Mesh& mesh, VertexHandle v) { return to_eigen(mesh.point(v)); }
 
+/// Length of the diagonal of the mesh's axis-aligned bounding box (0 for no vertices): the
+/// scale that tolerances and errors are relative to.
+inline double bounding_box_diagonal(const Mesh& mesh) {
+  if (mesh.n_vertices() == 0) return 0.0;
+  Eigen::Vector3d low = position(mesh, VertexHandle(0));
+  Eigen::Vector3d high = low;
+  for (VertexHandle v : mesh.vertices()) {
+    low = low.cwiseMin(position(mesh, v));
+    high = high.cwiseMax(position(mesh, v));
+  }
+  return (high - low).norm();
+}
+
 }  // namespace xparam

@@ -7,6 +7,7 @@
 
 #include "io/anchor_reader.h"
 #include "io/mesh_loader.h"
+#include "map/identity_truth.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
@@ -27,16 +28,6 @@ Mesh bent_and_retriangulated() {
   return flipped.mesh;
 }
 
-double bounding_box_diagonal(const Mesh& mesh) {
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300);
-  Eigen::Vector3d high = -low;
-  for (VertexHandle v : mesh.vertices()) {
-    low = low.cwiseMin(position(mesh, v));
-    high = high.cwiseMax(position(mesh, v));
-  }
-  return (high - low).norm();
-}
-
 TEST(KnownDeformation, BentRetriangulatedManIsRecovered) {
   const LoadedMesh man = load_mesh(test::data_path("human_man.obj"));
   const Mesh target = bent_and_retriangulated();
@@ -52,24 +43,15 @@ TEST(KnownDeformation, BentRetriangulatedManIsRecovered) {
   EXPECT_LT(map.distortion.all.e_l2, 1.3);
   EXPECT_NEAR(map.quality.area_ratio, 1.0, 0.02);
 
-  const double diagonal = bounding_box_diagonal(target);
-  double sum = 0.0;
-  double worst = 0.0;
-  for (int v = 0; v < map.remesh_vertices.rows(); ++v) {
-    const double error =
-        (map.remesh_vertices.row(v).transpose() - position(target, target.vertex_handle(v))).norm();
-    sum += error;
-    worst = std::max(worst, error);
-  }
-  const double mean = sum / static_cast<double>(map.remesh_vertices.rows()) / diagonal;
-  worst /= diagonal;
-  // Measured mean 0.0023 / max 0.022 of the diagonal; the bounds leave room for changes of the optimization, not for a wrong map
-  // (a vertex off by one ring is about 0.4% of the diagonal; a finger off by one, about 3%).
-  EXPECT_LT(mean, 0.004);
-  EXPECT_LT(worst, 0.03);
+  const test::TruthDistance truth = test::distance_to_identity_truth(map, target);
+  // Measured mean 0.0023 / max 0.022 of the diagonal; the bounds leave room for changes of the
+  // optimization, not for a wrong map (a vertex off by one ring is about 0.4% of the diagonal; a
+  // finger off by one, about 3%).
+  EXPECT_LT(truth.mean, 0.004);
+  EXPECT_LT(truth.max, 0.03);
   std::printf(
       "bent + retriangulated man: gt error mean %.5f max %.5f of the diagonal, E_L2 %.4f, flipped %zu\n",
-      mean, worst, map.distortion.all.e_l2, map.quality.flipped_faces.size());
+      truth.mean, truth.max, map.distortion.all.e_l2, map.quality.flipped_faces.size());
 }
 
 }  // namespace

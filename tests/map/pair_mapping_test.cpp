@@ -4,12 +4,13 @@
 #include "io/anchor_reader.h"
 #include "io/curve_reader.h"
 #include "io/mesh_loader.h"
+#include "map/identity_truth.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
 #include <tbb/global_control.h>
+#include <Eigen/Geometry>
 
 #include <cstdio>
 #include <set>
@@ -35,7 +36,9 @@ TEST(PairMapping, MeshAgainstItselfIsTheIdentity) {
   ASSERT_EQ(map.remesh_vertices.rows(), static_cast<int>(man.mesh.mesh.n_vertices()));
   double worst = 0.0;
   for (int v = 0; v < map.remesh_vertices.rows(); ++v) {
-    worst = std::max(worst, (map.remesh_vertices.row(v).transpose() - position(man.mesh.mesh, man.mesh.mesh.vertex_handle(v))).norm());
+    worst = std::max(worst, (map.remesh_vertices.row(v).transpose() -
+                             position(man.mesh.mesh, man.mesh.mesh.vertex_handle(v)))
+                                .norm());
   }
   EXPECT_LT(worst, 1e-9);
   EXPECT_NEAR(map.distortion.all.e_l2, 1.0, 1e-9);
@@ -47,7 +50,8 @@ TEST(PairMapping, MeshAgainstItselfIsTheIdentity) {
 TEST(PairMapping, RigidlyMovedScaledCopyHasNoStretch) {
   const HumanMan& man = human_man();
   Mesh moved = man.mesh.mesh;
-  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const double scale = 2.5;
   for (VertexHandle v : moved.vertices()) {
     moved.set_point(v, to_point(scale * rotation * position(moved, v) + Eigen::Vector3d(0.3, -1.0, 4.0)));
@@ -88,29 +92,16 @@ TEST(PairMapping, ManOntoWomanIsBijectiveAndCoversTheTarget) {
     const int v = map.anchors[0].anchors[k].vertex.idx();
     if (v >= static_cast<int>(man.mesh.mesh.n_vertices())) continue;  // inserted, not an input vertex
     const Eigen::Vector3d target_anchor = position(woman.mesh, map.anchors[1].anchors[k].input_point);
-    EXPECT_LT((map.remesh_vertices.row(v).transpose() - target_anchor).norm(), 1e-9) << map.anchors[0].anchors[k].name;
+    EXPECT_LT((map.remesh_vertices.row(v).transpose() - target_anchor).norm(), 1e-9)
+        << map.anchors[0].anchors[k].name;
   }
   ASSERT_EQ(map.curves.size(), curves.size());
-  std::printf("man->woman: E_L2 %.4f E_ang %.4f area ratio %.4f fallback %d/%d, seconds layout %.3f param %.3f compose %.3f total %.3f\n",
-              map.distortion.all.e_l2, map.distortion.all.e_ang, map.quality.area_ratio, map.fallback_polygons[0],
-              map.fallback_polygons[1], map.seconds.layout, map.seconds.parameterize, map.seconds.compose,
-              map.seconds.total);
-}
-
-// Mean distance from the image of template vertex i to target vertex i (the sample targets
-// share the SMPL vertex order) over the target's bounding-box diagonal.
-double ground_truth_error(const PairMapping& map, const Mesh& target) {
-  Eigen::Vector3d low = Eigen::Vector3d::Constant(1e300);
-  Eigen::Vector3d high = -low;
-  for (VertexHandle v : target.vertices()) {
-    low = low.cwiseMin(position(target, v));
-    high = high.cwiseMax(position(target, v));
-  }
-  double sum = 0.0;
-  for (int v = 0; v < map.remesh_vertices.rows(); ++v) {
-    sum += (map.remesh_vertices.row(v).transpose() - position(target, target.vertex_handle(v))).norm();
-  }
-  return sum / static_cast<double>(map.remesh_vertices.rows()) / (high - low).norm();
+  std::printf(
+      "man->woman: E_L2 %.4f E_ang %.4f area ratio %.4f fallback %d/%d, seconds layout %.3f param %.3f "
+      "compose %.3f total %.3f\n",
+      map.distortion.all.e_l2, map.distortion.all.e_ang, map.quality.area_ratio, map.fallback_polygons[0],
+      map.fallback_polygons[1], map.seconds.layout, map.seconds.parameterize, map.seconds.compose,
+      map.seconds.total);
 }
 
 // Untangling on the sample targets of the SMPL man (the woman, the bent man, the man with
@@ -143,7 +134,8 @@ TEST(PairMapping, UntanglingLeavesNoFlippedFaceOnTheSampleTargets) {
       ASSERT_FALSE(stars.quality.flipped_faces.empty());
       for (int f : stars.quality.flipped_faces) {
         int anchored = 0;
-        for (VertexHandle v : man.mesh.mesh.fv_range(man.mesh.mesh.face_handle(f))) anchored += static_cast<int>(anchor_vertices.count(v.idx()));
+        for (VertexHandle v : man.mesh.mesh.fv_range(man.mesh.mesh.face_handle(f)))
+          anchored += static_cast<int>(anchor_vertices.count(v.idx()));
         EXPECT_EQ(anchored, 1) << "face " << f;
       }
     }
@@ -158,17 +150,18 @@ TEST(PairMapping, UntanglingLeavesNoFlippedFaceOnTheSampleTargets) {
       if (map.remesh_vertices.row(v) != tangled.remesh_vertices.row(v)) ++moved;
     }
     EXPECT_LE(moved, map.untangling.moved_vertices);
-    const double gt_before = ground_truth_error(tangled, target.mesh);
-    const double gt_after = ground_truth_error(map, target.mesh);
+    const double gt_before = test::distance_to_identity_truth(tangled, target.mesh).mean;
+    const double gt_after = test::distance_to_identity_truth(map, target.mesh).mean;
     // A few of 6890 vertices move by less than an edge: the mean changes by far less than 1e-4
     // of the diagonal (measured below 1e-5).
     EXPECT_LT(gt_after, gt_before + 1e-4);
-    std::printf("man->%s: flipped %d -> %zu, moved %d (max %.4f mean %.4f), moves %d, rounds %d, gt %.6f -> %.6f, "
-                "area ratio %.4f, untangle %.3f s\n",
-                name.c_str(), map.untangling.flipped_before, map.quality.flipped_faces.size(),
-                map.untangling.moved_vertices, map.untangling.max_move, map.untangling.mean_move,
-                map.untangling.star_moves, map.untangling.rounds, gt_before, gt_after, map.quality.area_ratio,
-                map.seconds.untangle);
+    std::printf(
+        "man->%s: flipped %d -> %zu, moved %d (max %.4f mean %.4f), moves %d, rounds %d, gt %.6f -> %.6f, "
+        "area ratio %.4f, untangle %.3f s\n",
+        name.c_str(), map.untangling.flipped_before, map.quality.flipped_faces.size(),
+        map.untangling.moved_vertices, map.untangling.max_move, map.untangling.mean_move,
+        map.untangling.star_moves, map.untangling.rounds, gt_before, gt_after, map.quality.area_ratio,
+        map.seconds.untangle);
   }
   // Not a vacuous pass: the sample pairs do fold without untangling.
   EXPECT_GE(folded_pairs, 1);
@@ -197,7 +190,8 @@ TEST(PairMapping, UntanglingIsTheSameAtOneAndTwoThreads) {
     EXPECT_TRUE(one.correspondence[v].bary == two.correspondence[v].bary);
   }
   ASSERT_EQ(one.curves.size(), two.curves.size());
-  for (std::size_t c = 0; c < one.curves.size(); ++c) EXPECT_TRUE(one.curves[c].positions == two.curves[c].positions);
+  for (std::size_t c = 0; c < one.curves.size(); ++c)
+    EXPECT_TRUE(one.curves[c].positions == two.curves[c].positions);
 }
 
 }  // namespace

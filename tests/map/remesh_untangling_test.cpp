@@ -13,10 +13,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <tuple>
 #include <variant>
 
 namespace xparam {
@@ -49,28 +49,31 @@ Mesh planar_grid(int n) {
 // square's boundary.
 Eigen::Vector2d swirl(const Eigen::Vector2d& p, double turns) {
   const double angle = 2.0 * std::numbers::pi * turns * std::exp(-p.squaredNorm() / 0.16);
-  return Eigen::Vector2d(std::cos(angle) * p.x() - std::sin(angle) * p.y(), std::sin(angle) * p.x() + std::cos(angle) * p.y());
+  return Eigen::Vector2d(std::cos(angle) * p.x() - std::sin(angle) * p.y(),
+                         std::sin(angle) * p.x() + std::cos(angle) * p.y());
 }
 
-// Gamma of the constructed case: template point -> swirled -> located on the target grid.
-MappedPoint swirl_map(const Mesh& source, const Mesh& target, const SurfacePoint& point, double turns) {
-  const Eigen::Vector3d p = position(source, point);
-  const Eigen::Vector2d q = swirl(p.head<2>(), turns);
+// The point of the flat target grid (z = 0) at y.
+MappedPoint flat_target_point(const Mesh& target, const Eigen::Vector2d& y) {
   MappedPoint image;
   double best = -std::numeric_limits<double>::infinity();
   for (FaceHandle f : target.faces()) {
     Eigen::Vector3d x[3];
     int c = 0;
     for (VertexHandle v : target.fv_range(f)) x[c++] = position(target, v);
-    const Eigen::Vector3d bary = barycentric(Eigen::Vector3d(q.x(), q.y(), 0.0), x[0], x[1], x[2]);
+    const Eigen::Vector3d bary = barycentric(Eigen::Vector3d(y.x(), y.y(), 0.0), x[0], x[1], x[2]);
     if (bary.minCoeff() > best) {
       best = bary.minCoeff();
-      image.on_input.face = f.idx();
-      image.on_input.bary = bary;
+      image.on_input = SurfacePoint{f.idx(), bary};
     }
   }
   image.position = position(target, image.on_input);
   return image;
+}
+
+// Gamma of the constructed case: template point -> swirled -> located on the target grid.
+MappedPoint swirl_map(const Mesh& source, const Mesh& target, const SurfacePoint& point, double turns) {
+  return flat_target_point(target, swirl(position(source, point).head<2>(), turns));
 }
 
 struct SwirlCase {
@@ -104,8 +107,8 @@ struct SwirlCase {
   }
 };
 
-RemeshQualityResult quality_of(const std::vector<std::array<int, 3>>& faces, const std::vector<MappedPoint>& images,
-                               const Mesh& target) {
+RemeshQualityResult quality_of(const std::vector<std::array<int, 3>>& faces,
+                               const std::vector<MappedPoint>& images, const Mesh& target) {
   std::vector<Eigen::Vector3d> positions;
   std::vector<SurfacePoint> locations;
   for (const MappedPoint& image : images) {
@@ -135,7 +138,8 @@ TEST(RemeshUntangling, SwirlFoldsTheRemeshAndSlidingVerticesUnfoldsIt) {
   const RemeshQualityResult before = quality_of(faces, images, swirl_case.target);
   ASSERT_GE(before.flipped_faces.size(), 1u);
 
-  const UntangleResult r = untangle_remesh(swirl_case.source, images, swirl_case.gamma, swirl_case.target, {});
+  const UntangleResult r =
+      untangle_remesh(swirl_case.source, images, swirl_case.gamma, swirl_case.target, {});
   EXPECT_EQ(r.flipped_before, static_cast<int>(before.flipped_faces.size()));
   EXPECT_EQ(r.flipped_after, 0);
   EXPECT_TRUE(quality_of(faces, r.images, swirl_case.target).flipped_faces.empty());
@@ -154,17 +158,21 @@ TEST(RemeshUntangling, SwirlFoldsTheRemeshAndSlidingVerticesUnfoldsIt) {
     SurfacePoint at_v;
     at_v.face = (*swirl_case.source.vf_range(v).begin()).idx();
     int c = 0;
-    for (VertexHandle w : swirl_case.source.fv_range(swirl_case.source.face_handle(at_v.face))) at_v.bary[c++] = (w == v) ? 1.0 : 0.0;
+    for (VertexHandle w : swirl_case.source.fv_range(swirl_case.source.face_handle(at_v.face)))
+      at_v.bary[c++] = (w == v) ? 1.0 : 0.0;
     const Eigen::Vector3d moved = position(swirl_case.source, r.warp(at_v));
     EXPECT_LT((moved - position(swirl_case.source, r.template_points[v.idx()])).norm(), 1e-12) << v.idx();
     const MappedPoint image = swirl_case.gamma(r.template_points[v.idx()]);
     EXPECT_LT((image.position - r.images[v.idx()].position).norm(), 1e-12) << v.idx();
-    EXPECT_LT((position(swirl_case.target, r.images[v.idx()].on_input) - r.images[v.idx()].position).norm(), 1e-12);
+    EXPECT_LT((position(swirl_case.target, r.images[v.idx()].on_input) - r.images[v.idx()].position).norm(),
+              1e-12);
   }
   // The square's boundary is where no vertex can move: phi fixes it.
   for (VertexHandle v : swirl_case.source.vertices()) {
     if (!swirl_case.source.is_boundary(v)) continue;
-    EXPECT_LT((position(swirl_case.source, r.template_points[v.idx()]) - position(swirl_case.source, v)).norm(), 1e-15);
+    EXPECT_LT(
+        (position(swirl_case.source, r.template_points[v.idx()]) - position(swirl_case.source, v)).norm(),
+        1e-15);
   }
 }
 
@@ -216,7 +224,8 @@ bool at_own_vertex(const Mesh& mesh, const SurfacePoint& point, int v) {
 TEST(RemeshUntangling, AnchoredVerticesNeverMove) {
   const SwirlCase swirl_case;
   const Mesh& mesh = swirl_case.source;
-  const UntangleResult free = untangle_remesh(mesh, swirl_case.vertex_images(), swirl_case.gamma, swirl_case.target, {});
+  const UntangleResult free =
+      untangle_remesh(mesh, swirl_case.vertex_images(), swirl_case.gamma, swirl_case.target, {});
   ASSERT_FALSE(free.warp.moves.empty());
   // Anchor (at the vertex itself) every vertex that moved: then none of them may move.
   std::vector<SurfacePoint> anchors;
@@ -227,7 +236,8 @@ TEST(RemeshUntangling, AnchoredVerticesNeverMove) {
     anchors.push_back(vertex_surface_point(mesh, v));
   }
   ASSERT_FALSE(anchored.empty());
-  const UntangleResult fixed = untangle_remesh(mesh, swirl_case.vertex_images(), swirl_case.gamma, swirl_case.target, anchors);
+  const UntangleResult fixed =
+      untangle_remesh(mesh, swirl_case.vertex_images(), swirl_case.gamma, swirl_case.target, anchors);
   for (std::size_t a = 0; a < anchored.size(); ++a) {
     EXPECT_TRUE(at_own_vertex(mesh, fixed.template_points[anchored[a]], anchored[a])) << anchored[a];
     const SurfacePoint image = fixed.warp(anchors[a]);
@@ -255,27 +265,12 @@ struct SqueezeCase : SwirlCase {
       const double t = std::clamp((r - 0.3) / 0.4, 0.0, 1.0);
       const double blend = 1.0 - t * t * (3.0 - 2.0 * t);
       const double theta = std::atan2(d.y(), d.x());
-      const double turned = theta0 + 2.0 * std::atan(k * std::tan(0.5 * std::remainder(theta - theta0, 2.0 * std::numbers::pi)));
+      const double turned =
+          theta0 +
+          2.0 * std::atan(k * std::tan(0.5 * std::remainder(theta - theta0, 2.0 * std::numbers::pi)));
       const double angle = theta + blend * std::remainder(turned - theta, 2.0 * std::numbers::pi);
-      return flat_point(anchor + r * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+      return flat_target_point(target, anchor + r * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
     };
-  }
-  // The target point of the flat square at y.
-  MappedPoint flat_point(const Eigen::Vector2d& y) const {
-    MappedPoint image;
-    double best = -std::numeric_limits<double>::infinity();
-    for (FaceHandle f : target.faces()) {
-      Eigen::Vector3d x[3];
-      int c = 0;
-      for (VertexHandle v : target.fv_range(f)) x[c++] = position(target, v);
-      const Eigen::Vector3d bary = barycentric(Eigen::Vector3d(y.x(), y.y(), 0.0), x[0], x[1], x[2]);
-      if (bary.minCoeff() > best) {
-        best = bary.minCoeff();
-        image.on_input = SurfacePoint{f.idx(), bary};
-      }
-    }
-    image.position = position(target, image.on_input);
-    return image;
   }
   int centre() const { return 3 * 9 + 4; }  // vertex (4, 3) of the 8 x 8 grid
 };
@@ -328,7 +323,8 @@ TEST(RemeshUntangling, RingMovesUnfoldAFoldAtAnAnchorAndFixIt) {
   }
   // The images are Gamma of the moved points.
   for (VertexHandle v : mesh.vertices()) {
-    EXPECT_LT((squeeze.gamma(r.template_points[v.idx()]).position - r.images[v.idx()].position).norm(), 1e-12) << v.idx();
+    EXPECT_LT((squeeze.gamma(r.template_points[v.idx()]).position - r.images[v.idx()].position).norm(), 1e-12)
+        << v.idx();
   }
   // phi is injective on a dense sample and keeps points on the square.
   std::vector<Eigen::Vector3d> moved;
@@ -352,7 +348,8 @@ TEST(RemeshUntangling, RejectsImagesOfTheWrongSize) {
   const SwirlCase swirl_case;
   std::vector<MappedPoint> images = swirl_case.vertex_images();
   images.pop_back();
-  EXPECT_THROW(untangle_remesh(swirl_case.source, images, swirl_case.gamma, swirl_case.target, {}), ParamError);
+  EXPECT_THROW(untangle_remesh(swirl_case.source, images, swirl_case.gamma, swirl_case.target, {}),
+               ParamError);
 }
 
 }  // namespace
