@@ -4,11 +4,11 @@
 #include "core/errors.h"
 #include "io/archive_commit.h"
 
-#include <nlohmann/json.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <mutex>
@@ -54,7 +54,8 @@ std::vector<std::size_t> runnable(const BatchPlan& plan) {
 template <typename Body>
 void run_parallel(int threads, std::size_t n, const Body& body) {
   XP_ASSERT(threads >= 1);
-  const tbb::global_control cap(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  const tbb::global_control cap(tbb::global_control::max_allowed_parallelism,
+                                static_cast<std::size_t>(threads));
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_for(
@@ -115,6 +116,7 @@ std::string batch_options_json(const PairSettings& settings) {
   options["optimization"]["metric"] = std::string(to_string(settings.optimization.metric));
   options["optimization"]["merge"] = settings.optimization.merge;
   options["optimization"]["contact_clearance"] = settings.optimization.stretching.contact_clearance;
+  options["relax"] = settings.cross_map.relax;
   options["untangle"] = settings.untangle;
   return options.dump();
 }
@@ -142,7 +144,8 @@ BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, 
     if (!archive.is_committed(name))
       throw ArchiveError(settings.archive.string() + ": target \"" + name +
                          "\" was planned as kept but the archive does not hold it");
-    summary.targets[i] = outcome_of(ArchiveReader(target_part_path(settings.archive, name)).targets().front());
+    summary.targets[i] =
+        outcome_of(ArchiveReader(target_part_path(settings.archive, name)).targets().front());
     ++summary.kept;
   }
 

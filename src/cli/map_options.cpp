@@ -26,6 +26,10 @@ void add_optimization_options(CLI::App& command, DomainOptimizationSettings& opt
 
 void add_map_options(CLI::App& command, PairSettings& settings) {
   add_optimization_options(command, settings.optimization);
+  command.add_flag(
+      "--relax,!--no-relax", settings.cross_map.relax,
+      "Relax each patch's map on the target surface (symmetric Dirichlet energy, SLIM) so unanchored "
+      "protrusions are not squeezed (the map stays a bijection; default on)");
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");

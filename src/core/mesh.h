@@ -47,4 +47,11 @@ inline double bounding_box_diagonal(const Mesh& mesh) {
   return (high - low).norm();
 }
 
+/// Sum of the face areas.
+inline double surface_area(const Mesh& mesh) {
+  double area = 0.0;
+  for (FaceHandle f : mesh.faces()) area += mesh.calc_face_area(f);
+  return area;
+}
+
 }  // namespace xparam

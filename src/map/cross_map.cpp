@@ -2,11 +2,14 @@
 
 #include "core/errors.h"
 #include "core/provenance.h"
+#include "core/stopwatch.h"
 #include "param/convex_polygon.h"
 #include "param/domain_map.h"
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 
@@ -17,14 +20,18 @@ struct CrossMap::Impl {
   std::array<const Mesh*, 2> inputs{};
   std::array<SidePatches, 2> sides;
   std::array<std::vector<PatchParameterizationResult>, 2> params;
-  std::vector<std::optional<DomainMap>> domain_maps;  // #patches: Gamma_st, source polygon -> target polygon
-  std::vector<std::optional<PointLocator>> target_locators;  // #patches, over the target patch parameterizations
+  std::vector<std::optional<PointLocator>>
+      target_locators;  // #patches, over the target patch parameterizations
+  // #patches: each template patch vertex in the target polygon, Gamma_st . Gamma_s relaxed;
+  // a template triangle maps affinely onto the triangle of its corners' entries.
+  std::vector<std::vector<Eigen::Vector2d>> source_in_target;
+  std::vector<std::vector<Eigen::Vector2d>>
+      unrelaxed;  // #patches, Gamma_st . Gamma_s itself (empty when not relaxed)
   std::vector<std::vector<int>> source_refined_faces;  // #source input faces: refined faces inside it
+  RelaxationSummary relaxation;
 
-  // Source domain point -> target domain point -> target surface.
-  MappedPoint map_from_source_domain(int patch, const Eigen::Vector2d& uv_source) const {
-    const Eigen::Vector2d uv_target = (*domain_maps[patch])(uv_source);
-
+  // Target domain point -> target surface.
+  MappedPoint map_from_target_domain(int patch, const Eigen::Vector2d& uv_target) const {
     const PointLocation hit = target_locators[patch]->locate(uv_target);
     const DiskPatch& target_patch = sides[1].patches[patch];
     const std::array<int, 3>& corners = target_patch.triangles[hit.triangle];
@@ -45,13 +52,15 @@ struct CrossMap::Impl {
     const Mesh& mesh = layout->sides[0].mesh;
     const int patch = patch_of(mesh, mesh.face_handle(refined_face));
     const std::array<int, 3>& corners = sides[0].face_corners[refined_face];
-    const std::vector<Eigen::Vector2d>& uv = params[0][patch].uv;
-    const Eigen::Vector2d uv_source = bary[0] * uv[corners[0]] + bary[1] * uv[corners[1]] + bary[2] * uv[corners[2]];
-    return map_from_source_domain(patch, uv_source);
+    const std::vector<Eigen::Vector2d>& uv = source_in_target[patch];
+    return map_from_target_domain(
+        patch, bary[0] * uv[corners[0]] + bary[1] * uv[corners[1]] + bary[2] * uv[corners[2]]);
   }
 };
 
-CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& inputs) : impl_(std::make_unique<Impl>()) {
+CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& inputs,
+                   const CrossMapSettings& settings)
+    : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.layout = &layout;
   m.inputs = inputs;
@@ -60,15 +69,42 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
     m.params[side] = parameterize_patches(m.sides[side].patches);
   }
 
-  // Per patch: Gamma_st between its two domains (corner i is the same anchor on both sides,
-  // the start of the patch's i-th layout halfedge) and a locator over the target's domain.
+  // Per patch: a locator over the target's domain, and the template patch carried into that
+  // domain by Gamma_st (corner i is the same anchor on both sides, the start of the patch's
+  // i-th layout halfedge), then relaxed there.
   const int n_patches = static_cast<int>(layout.patches.size());
-  m.domain_maps.resize(n_patches);
+  const double scale = std::sqrt(surface_area(*inputs[1]) / surface_area(*inputs[0]));
   m.target_locators.resize(n_patches);
+  m.source_in_target.resize(n_patches);
+  m.unrelaxed.resize(n_patches);
+  std::vector<MapRelaxationResult> relaxed(n_patches);
+  Stopwatch watch;
   tbb::parallel_for(0, n_patches, [&](int p) {
-    m.domain_maps[p].emplace(m.sides[0].patches[p].polygon, m.sides[1].patches[p].polygon);
     m.target_locators[p].emplace(m.params[1][p].uv, m.sides[1].patches[p].triangles);
+    const DomainMap domain_map(m.sides[0].patches[p].polygon, m.sides[1].patches[p].polygon);
+    std::vector<Eigen::Vector2d>& uv = m.source_in_target[p];
+    for (const Eigen::Vector2d& point : m.params[0][p].uv) uv.push_back(domain_map(point));
+    if (!settings.relax) return;
+    const TargetPatchView target{&m.sides[1].patches[p], &m.params[1][p].uv, &*m.target_locators[p]};
+    relaxed[p] = relax_patch_map(m.sides[0].patches[p], uv, target, scale, settings.relaxation);
+    if (relaxed[p].iterations > 0) {
+      m.unrelaxed[p] = std::move(uv);
+      uv = relaxed[p].uv;
+    }
   });
+  if (settings.relax) {
+    double area = 0.0;
+    for (const MapRelaxationResult& patch : relaxed) {
+      area += patch.area;
+      m.relaxation.energy_before += patch.energy_before;
+      m.relaxation.energy_after += patch.energy_after;
+      if (patch.iterations > 0) ++m.relaxation.patches;
+      m.relaxation.max_iterations = std::max(m.relaxation.max_iterations, patch.iterations);
+    }
+    m.relaxation.energy_before /= area;
+    m.relaxation.energy_after /= area;
+    m.relaxation.seconds = watch.lap();
+  }
 
   const Mesh& source = layout.sides[0].mesh;
   m.source_refined_faces.resize(inputs[0]->n_faces());
@@ -135,6 +171,17 @@ std::array<int, 2> CrossMap::inverted_triangles() const {
     }
   }
   return count;
+}
+
+const RelaxationSummary& CrossMap::relaxation() const { return impl_->relaxation; }
+
+void CrossMap::undo_relaxation(const std::vector<int>& patches) {
+  for (int p : patches) {
+    if (impl_->unrelaxed.at(p).empty()) continue;
+    impl_->source_in_target[p] = std::move(impl_->unrelaxed[p]);
+    impl_->unrelaxed[p].clear();
+    ++impl_->relaxation.undone;
+  }
 }
 
 std::array<int, 2> CrossMap::fallback_polygons() const {

@@ -17,8 +17,9 @@
 /// continuous, and bijective because every piece is.
 
 #include "core/surface_point.h"
-#include "layout/layout.h"
 #include "domain/patch_extraction.h"
+#include "layout/layout.h"
+#include "param/map_relaxation.h"
 #include "param/patch_parameterization.h"
 #include "param/point_locator.h"
 
@@ -32,23 +33,44 @@ namespace xparam {
 
 /// Where a template point lands on the target.
 struct MappedPoint {
-  SurfacePoint on_input;           ///< target input face + barycentrics (fv order of the input target mesh)
-  Eigen::Vector3d position;        ///< the 3-D point on the target
-  int patch = -1;                  ///< the layout patch it lies in
+  SurfacePoint on_input;     ///< target input face + barycentrics (fv order of the input target mesh)
+  Eigen::Vector3d position;  ///< the 3-D point on the target
+  int patch = -1;            ///< the layout patch it lies in
   /// How far (target LPBD units) the point fell outside its target domain before it was
   /// clamped onto it: rounding-sized in a healthy map.
   double clamp_distance = 0.0;
 };
 
+/// Options of the cross map.
+struct CrossMapSettings {
+  /// Relax each patch's map (param/map_relaxation.h) after composing Gamma_st . Gamma_s.
+  bool relax = true;
+  MapRelaxationSettings relaxation;  ///< options of that step
+};
+
+/// What the relaxation did, summed over the patches (zeros when it was off).
+struct RelaxationSummary {
+  double energy_before =
+      0.0;  ///< symmetric Dirichlet energy of Gamma_st . Gamma_s, over the template's area (4 = isometry)
+  double energy_after = 0.0;  ///< the same after relaxing
+  int patches = 0;            ///< patches whose energy went down
+  int max_iterations = 0;     ///< most SLIM iterations any patch took
+  int undone =
+      0;  ///< patches whose relaxation was undone (map_pair: it left folds the untangling could not remove)
+  double seconds = 0.0;  ///< wall-clock time of the step (not deterministic)
+};
+
 /// The map between the two sides of a layout, built once and queried for any template point.
 class CrossMap {
  public:
-  /// Parameterize every patch of both sides (in parallel) and index the target domains.
+  /// Parameterize every patch of both sides (in parallel), index the target domains, place
+  /// each template patch in its target domain and relax it there.
   /// `inputs[s]` is the input mesh side s was refined from.
   /// \pre layout consistent (check_layout, with triangles = false after merging) and patch ids
   ///   assigned on both sides
   /// \throw ParamError when a patch cannot be parameterized
-  CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& inputs);
+  CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& inputs,
+           const CrossMapSettings& settings = {});
   ~CrossMap();
   CrossMap(CrossMap&&) noexcept;
   CrossMap& operator=(CrossMap&&) noexcept;
@@ -68,6 +90,13 @@ class CrossMap {
   /// convex polygon); mean-value weights guarantee it in exact arithmetic, this counts what
   /// floating point did to very compressed regions.
   std::array<int, 2> inverted_triangles() const;
+
+  /// What the relaxation did.
+  const RelaxationSummary& relaxation() const;
+
+  /// Map the given patches by Gamma_st . Gamma_s again, without their relaxation (a patch's
+  /// boundary is the same either way, so the map stays a bijection).
+  void undo_relaxation(const std::vector<int>& patches);
 
  private:
   struct Impl;

@@ -1,12 +1,12 @@
 #include "map/pair_mapping.h"
 
 #include "core/errors.h"
-#include "core/stopwatch.h"
 #include "core/provenance.h"
-#include "map/cross_map.h"
+#include "core/stopwatch.h"
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <map>
 
 namespace xparam {
@@ -52,6 +52,47 @@ std::vector<std::array<int, 3>> triangles_of(const Mesh& mesh) {
   return triangles;
 }
 
+// Gamma (or Gamma . phi with untangling) at every template input vertex.
+struct ComposedImages {
+  UntangleResult untangled;  // images and phi; only `images` is set when untangling is off
+  double untangle_seconds = 0.0;
+};
+
+ComposedImages compose_images(const CrossMap& cross, const Mesh& source, const Mesh& target,
+                              const std::vector<SurfacePoint>& anchor_points, const PairSettings& settings) {
+  ComposedImages composed;
+  std::vector<MappedPoint> images(source.n_vertices());
+  tbb::parallel_for(0, static_cast<int>(images.size()), [&](int v) { images[v] = cross.map_vertex(v); });
+  if (!settings.untangle) {
+    composed.untangled.images = std::move(images);
+    return composed;
+  }
+  Stopwatch watch;
+  composed.untangled = untangle_remesh(
+      source, std::move(images), [&](const SurfacePoint& p) { return cross.map_input_point(p); }, target,
+      anchor_points, settings.untangling);
+  composed.untangle_seconds = watch.lap();
+  return composed;
+}
+
+// The layout patches holding a corner of a flipped remesh face, ascending.
+std::vector<int> patches_of_folds(const std::vector<std::array<int, 3>>& faces,
+                                  const std::vector<MappedPoint>& images, const Mesh& target) {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<SurfacePoint> locations;
+  for (const MappedPoint& image : images) {
+    positions.push_back(image.position);
+    locations.push_back(image.on_input);
+  }
+  std::vector<int> patches;
+  for (int f : measure_remesh_quality(faces, positions, locations, target).flipped_faces) {
+    for (int v : faces[f]) patches.push_back(images[v].patch);
+  }
+  std::sort(patches.begin(), patches.end());
+  patches.erase(std::unique(patches.begin(), patches.end()), patches.end());
+  return patches;
+}
+
 }  // namespace
 
 PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
@@ -84,31 +125,43 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   result.seconds.optimize = watch.lap();
 
   stage("parameterize");
-  const CrossMap cross(layout, {&source, &target});
+  CrossMap cross(layout, {&source, &target}, settings.cross_map);
+  result.seconds.relax = cross.relaxation().seconds;
   result.fallback_polygons = cross.fallback_polygons();
   result.inverted_triangles = cross.inverted_triangles();
   result.seconds.parameterize = watch.lap();
 
   stage("compose");
   // Refinement only appends vertices, so template input vertex i is refined vertex i.
-  const int n_vertices = static_cast<int>(source.n_vertices());
   XP_ASSERT(layout.sides[0].mesh.n_vertices() >= source.n_vertices());
-  std::vector<MappedPoint> images(n_vertices);
-  tbb::parallel_for(0, n_vertices, [&](int v) { images[v] = cross.map_vertex(v); });
-  TemplateWarp warp;
-  if (settings.untangle) {
-    Stopwatch untangle_watch;
-    std::vector<SurfacePoint> anchor_points;
-    for (const PlacedAnchor& anchor : result.anchors[0].anchors) anchor_points.push_back(anchor.input_point);
-    UntangleResult untangled = untangle_remesh(
-        source, std::move(images), [&](const SurfacePoint& p) { return cross.map_input_point(p); }, target,
-        anchor_points, settings.untangling);
-    images = std::move(untangled.images);
-    warp = std::move(untangled.warp);
-    result.untangling = {untangled.flipped_before, untangled.moved_vertices, untangled.max_move,
-                         untangled.mean_move,      static_cast<int>(warp.moves.size()), untangled.rounds};
-    result.seconds.untangle = untangle_watch.lap();
+  std::vector<SurfacePoint> anchor_points;
+  for (const PlacedAnchor& anchor : result.anchors[0].anchors) anchor_points.push_back(anchor.input_point);
+  const std::vector<std::array<int, 3>> faces = triangles_of(source);
+  ComposedImages composed = compose_images(cross, source, target, anchor_points, settings);
+  // Relaxing can leave a fold in a strongly curved spot (a heel, a hoof) that the untangling
+  // cannot remove; those patches go back to Gamma_st . Gamma_s and everything is composed again
+  // (a few rounds: the new untangling may leave a fold elsewhere).
+  for (int round = 0; round < 3 && settings.cross_map.relax && composed.untangled.flipped_after > 0;
+       ++round) {
+    const int undone = cross.relaxation().undone;
+    cross.undo_relaxation(patches_of_folds(faces, composed.untangled.images, target));
+    if (cross.relaxation().undone == undone) break;
+    composed = compose_images(cross, source, target, anchor_points, settings);
   }
+  result.relaxation = cross.relaxation();
+  std::vector<MappedPoint>& images = composed.untangled.images;
+  const TemplateWarp& warp = composed.untangled.warp;
+  if (settings.untangle) {
+    const UntangleResult& untangled = composed.untangled;
+    result.untangling = {untangled.flipped_before,
+                         untangled.moved_vertices,
+                         untangled.max_move,
+                         untangled.mean_move,
+                         static_cast<int>(warp.moves.size()),
+                         untangled.rounds};
+    result.seconds.untangle = composed.untangle_seconds;
+  }
+  const int n_vertices = static_cast<int>(source.n_vertices());
   result.correspondence.resize(n_vertices);
   result.remesh_vertices.resize(n_vertices, 3);
   for (int v = 0; v < n_vertices; ++v) {
@@ -138,7 +191,6 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     source_positions[v] = position(source, source.vertex_handle(v));
     image_positions[v] = images[v].position;
   }
-  const std::vector<std::array<int, 3>> faces = triangles_of(source);
   result.distortion = measure_distortion(source_positions, image_positions, faces);
   result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
   result.seconds.metrics = watch.lap();

@@ -12,9 +12,10 @@
 #include "core/surface_point.h"
 #include "domain/base_domain_optimization.h"
 #include "layout/consistent_layout.h"
-#include "param/distortion.h"
+#include "map/cross_map.h"
 #include "map/remesh_quality.h"
 #include "map/remesh_untangling.h"
+#include "param/distortion.h"
 
 #include <Eigen/Core>
 
@@ -27,9 +28,11 @@ namespace xparam {
 
 /// Options of map_pair. Defaults are what `xparam pair` and `xparam batch` use.
 struct PairSettings {
-  PlacementSettings placement;         ///< how anchors given as positions are put on the meshes
-  ConsistentLayoutSettings layout;     ///< the pre-step (layout/consistent_layout.h)
-  DomainOptimizationSettings optimization;  ///< stretching, swapping, merging (domain/base_domain_optimization.h)
+  PlacementSettings placement;      ///< how anchors given as positions are put on the meshes
+  ConsistentLayoutSettings layout;  ///< the pre-step (layout/consistent_layout.h)
+  DomainOptimizationSettings
+      optimization;            ///< stretching, swapping, merging (domain/base_domain_optimization.h)
+  CrossMapSettings cross_map;  ///< the patch maps' relaxation (map/cross_map.h)
   /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
   bool untangle = true;
   UntangleSettings untangling;  ///< options of that step
@@ -40,7 +43,8 @@ struct PairSeconds {
   double anchors = 0.0;       ///< matching and placing anchors on both meshes
   double layout = 0.0;        ///< the consistent layout
   double optimize = 0.0;      ///< base-domain optimization (paper sections 4-5)
-  double parameterize = 0.0;  ///< LPBDs and patch parameterizations of both sides
+  double parameterize = 0.0;  ///< LPBDs and patch parameterizations of both sides, and the relaxation
+  double relax = 0.0;         ///< relaxing the patch maps (inside parameterize)
   double compose = 0.0;       ///< mapping every template vertex and curve point
   double untangle = 0.0;      ///< untangling the remesh (inside compose)
   double metrics = 0.0;       ///< distortion and remesh quality
@@ -76,14 +80,16 @@ struct PairMapping {
   std::vector<int> face_patch;       ///< #template input faces: layout patch holding most of the face's area
   DistortionResult distortion;       ///< per face and global L2-stretch and angle distortion (eq. 3, 5, 6)
   RemeshQualityResult quality;       ///< flipped faces and area ratio of the remesh on the target
+  RelaxationSummary relaxation;      ///< how much relaxing the patch maps lowered their energy
   UntangleSummary untangling;        ///< how far the remesh's vertices were slid to unfold it
   std::vector<MappedCurve> curves;   ///< the template's feature curves on the target, in input order
-  ConsistentLayoutResult layout;     ///< the optimized layout on both (refined) meshes, for exports and counts
+  ConsistentLayoutResult layout;  ///< the optimized layout on both (refined) meshes, for exports and counts
   DomainOptimizationResult optimization;  ///< what the base-domain optimization did (swaps, merges, seconds)
   std::array<PlacedAnchors, 2> anchors;  ///< template and target anchors as placed (snap distances, warnings)
   std::array<int, 2> fallback_polygons{};  ///< patches per side whose degenerate LPBD was replaced
-  std::array<int, 2> inverted_triangles{}; ///< parameterization triangles per side with non-positive area (0: bijective)
-  double max_clamp_distance = 0.0;   ///< largest clamp of a query onto its target domain (rounding-sized)
+  std::array<int, 2>
+      inverted_triangles{};  ///< parameterization triangles per side with non-positive area (0: bijective)
+  double max_clamp_distance = 0.0;  ///< largest clamp of a query onto its target domain (rounding-sized)
   PairSeconds seconds;
   PairSettings settings;
 };

@@ -88,13 +88,18 @@ TEST(PairCommand, MetricsReportTheMapTheUntanglingAndTheStages) {
   EXPECT_LT(metrics["E_L2"].get<double>(), 1.1);  // measured 1.026
   EXPECT_NEAR(metrics["area_ratio"].get<double>(), 1.0, 0.02);
   EXPECT_EQ(metrics["anchors"], 41);
+  EXPECT_EQ(metrics["relaxation"]["enabled"], true);
+  EXPECT_LE(metrics["relaxation"]["energy_after"].get<double>(),
+            metrics["relaxation"]["energy_before"].get<double>());
+  EXPECT_GE(metrics["relaxation"]["energy_after"].get<double>(),
+            4.0);  // an isometry's symmetric Dirichlet energy
   EXPECT_EQ(metrics["untangling"]["enabled"], true);
   // Gamma alone folds a few faces at the toes and the crotch; untangling moved some vertices.
   EXPECT_GE(metrics["untangling"]["flipped_before"].get<int>(), 1);
   EXPECT_GE(metrics["untangling"]["moved_vertices"].get<int>(), 1);
   EXPECT_EQ(metrics["optimization"]["metric"], "balanced");
   for (const char* stage :
-       {"anchors", "layout", "optimize", "parameterize", "compose", "untangle", "metrics"})
+       {"anchors", "layout", "optimize", "parameterize", "relax", "compose", "untangle", "metrics"})
     EXPECT_GE(metrics["seconds"][stage].get<double>(), 0.0) << stage;
   EXPECT_TRUE(fs::exists(default_run() / "stretch.ply"));
 }
