@@ -89,7 +89,7 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
     relaxed[p] = relax_patch_map(m.sides[0].patches[p], uv, target, scale, settings.relaxation);
     if (relaxed[p].iterations > 0) {
       m.unrelaxed[p] = std::move(uv);
-      uv = relaxed[p].uv;
+      uv = std::move(relaxed[p].uv);
     }
   });
   if (settings.relax) {

@@ -78,14 +78,8 @@ ComposedImages compose_images(const CrossMap& cross, const Mesh& source, const M
 // The layout patches holding a corner of a flipped remesh face, ascending.
 std::vector<int> patches_of_folds(const std::vector<std::array<int, 3>>& faces,
                                   const std::vector<MappedPoint>& images, const Mesh& target) {
-  std::vector<Eigen::Vector3d> positions;
-  std::vector<SurfacePoint> locations;
-  for (const MappedPoint& image : images) {
-    positions.push_back(image.position);
-    locations.push_back(image.on_input);
-  }
   std::vector<int> patches;
-  for (int f : measure_remesh_quality(faces, positions, locations, target).flipped_faces) {
+  for (int f : measure_remesh_quality(faces, images, target).flipped_faces) {
     for (int v : faces[f]) patches.push_back(images[v].patch);
   }
   std::sort(patches.begin(), patches.end());

@@ -668,4 +668,15 @@ UntangleResult untangle_remesh(const Mesh& source, std::vector<MappedPoint> imag
   return result;
 }
 
+RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>& faces,
+                                           const std::vector<MappedPoint>& images, const Mesh& target) {
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<SurfacePoint> locations;
+  for (const MappedPoint& image : images) {
+    positions.push_back(image.position);
+    locations.push_back(image.on_input);
+  }
+  return measure_remesh_quality(faces, positions, locations, target);
+}
+
 }  // namespace xparam

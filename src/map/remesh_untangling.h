@@ -87,6 +87,10 @@ struct UntangleResult {
 /// Gamma: where a point of the template's input surface lands on the target.
 using SurfaceMap = std::function<MappedPoint(const SurfacePoint&)>;
 
+/// measure_remesh_quality of the remesh whose vertex i lies at images[i].
+RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>& faces,
+                                           const std::vector<MappedPoint>& images, const Mesh& target);
+
 /// Slide template vertices of flipped remesh faces inside their stars until the remesh of
 /// Gamma . phi has no flipped face (measure_remesh_quality's test) or no move helps.
 /// Vertices whose open star holds an anchor (`fixed_points`) never move, nor do vertices with

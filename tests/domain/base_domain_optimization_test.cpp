@@ -42,6 +42,15 @@ Layout build_layout(const std::string& source_file, const std::string& source_an
 }
 
 // The two bundled pairs, stretched once (the swap and merge tests start from there).
+// Swapping by `metric` alone: no stretching before, no merging after.
+DomainOptimizationSettings swaps_only(SwapMetric metric) {
+  DomainOptimizationSettings settings;
+  settings.stretch = false;
+  settings.metric = metric;
+  settings.merge = false;
+  return settings;
+}
+
 struct Pair {
   std::string name;
   Layout initial;
@@ -118,11 +127,7 @@ TEST(BaseDomainOptimization, EveryMetricKeepsTheLayoutConsistent) {
                               SwapMetric::gar, SwapMetric::balanced}) {
       const std::string what = pair.name + " " + std::string(to_string(metric));
       Layout layout = pair.stretched;
-      DomainOptimizationSettings settings;
-      settings.stretch = false;
-      settings.metric = metric;
-      settings.merge = false;
-      const DomainOptimizationResult result = optimize_base_domain(layout, settings);
+      const DomainOptimizationResult result = optimize_base_domain(layout, swaps_only(metric));
       expect_consistent(layout, true, what);
       EXPECT_EQ(result.merges, 0) << what;
       EXPECT_LE(result.repair_swaps, result.swaps) << what;
@@ -230,11 +235,7 @@ TEST(BaseDomainOptimization, DenseMetricsLowerTheirEnergyConsistentlyAtAnyThread
     const auto run = [&](int threads) {
       const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
       Layout layout = pair.stretched;
-      DomainOptimizationSettings settings;
-      settings.stretch = false;
-      settings.metric = metric;
-      settings.merge = false;
-      const DomainOptimizationResult result = optimize_base_domain(layout, settings);
+      const DomainOptimizationResult result = optimize_base_domain(layout, swaps_only(metric));
       return std::make_pair(std::move(layout), result);
     };
     const auto [one, one_result] = run(1);

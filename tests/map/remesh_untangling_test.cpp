@@ -107,17 +107,6 @@ struct SwirlCase {
   }
 };
 
-RemeshQualityResult quality_of(const std::vector<std::array<int, 3>>& faces,
-                               const std::vector<MappedPoint>& images, const Mesh& target) {
-  std::vector<Eigen::Vector3d> positions;
-  std::vector<SurfacePoint> locations;
-  for (const MappedPoint& image : images) {
-    positions.push_back(image.position);
-    locations.push_back(image.on_input);
-  }
-  return measure_remesh_quality(faces, positions, locations, target);
-}
-
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Both fan centres of a move strictly inside the kernel of its flattened star.
@@ -135,14 +124,14 @@ TEST(RemeshUntangling, SwirlFoldsTheRemeshAndSlidingVerticesUnfoldsIt) {
   const SwirlCase swirl_case;
   const std::vector<std::array<int, 3>> faces = swirl_case.faces();
   const std::vector<MappedPoint> images = swirl_case.vertex_images();
-  const RemeshQualityResult before = quality_of(faces, images, swirl_case.target);
+  const RemeshQualityResult before = measure_remesh_quality(faces, images, swirl_case.target);
   ASSERT_GE(before.flipped_faces.size(), 1u);
 
   const UntangleResult r =
       untangle_remesh(swirl_case.source, images, swirl_case.gamma, swirl_case.target, {});
   EXPECT_EQ(r.flipped_before, static_cast<int>(before.flipped_faces.size()));
   EXPECT_EQ(r.flipped_after, 0);
-  EXPECT_TRUE(quality_of(faces, r.images, swirl_case.target).flipped_faces.empty());
+  EXPECT_TRUE(measure_remesh_quality(faces, r.images, swirl_case.target).flipped_faces.empty());
   EXPECT_GE(r.moved_vertices, 1);
   EXPECT_GT(r.max_move, 0.0);
   // A vertex moves inside its star: less than the longest spoke of the grid (the diagonal).
@@ -288,7 +277,7 @@ TEST(RemeshUntangling, RingMovesUnfoldAFoldAtAnAnchorAndFixIt) {
   auto has_anchor_corner = [&](int f) {
     return std::find(faces[f].begin(), faces[f].end(), squeeze.centre()) != faces[f].end();
   };
-  const RemeshQualityResult before = quality_of(faces, images, squeeze.target);
+  const RemeshQualityResult before = measure_remesh_quality(faces, images, squeeze.target);
   ASSERT_TRUE(std::any_of(before.flipped_faces.begin(), before.flipped_faces.end(), has_anchor_corner));
 
   UntangleSettings rings_only;
@@ -296,7 +285,7 @@ TEST(RemeshUntangling, RingMovesUnfoldAFoldAtAnAnchorAndFixIt) {
   const UntangleResult r = untangle_remesh(mesh, images, squeeze.gamma, squeeze.target, {anchor}, rings_only);
   EXPECT_EQ(r.flipped_before, static_cast<int>(before.flipped_faces.size()));
   EXPECT_EQ(r.flipped_after, 0);
-  EXPECT_TRUE(quality_of(faces, r.images, squeeze.target).flipped_faces.empty());
+  EXPECT_TRUE(measure_remesh_quality(faces, r.images, squeeze.target).flipped_faces.empty());
   ASSERT_GE(r.ring_moves, 1);
   EXPECT_EQ(r.ring_moves, static_cast<int>(r.warp.moves.size()));
   // The anchor is fixed exactly, as a vertex and as a point.
