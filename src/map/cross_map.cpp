@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "core/provenance.h"
 #include "core/stopwatch.h"
+#include "map/chart_gluing.h"
 #include "param/convex_polygon.h"
 #include "param/domain_map.h"
 
@@ -12,6 +13,8 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <tuple>
+#include <utility>
 
 namespace xparam {
 
@@ -28,22 +31,83 @@ struct CrossMap::Impl {
   std::vector<std::vector<Eigen::Vector2d>>
       unrelaxed;  // #patches, Gamma_st . Gamma_s itself (empty when not relaxed)
   std::vector<std::vector<int>> source_refined_faces;  // #source input faces: refined faces inside it
+  // #sides x #patches: the mean-value parameterization of a patch whose own was relaxed (empty otherwise).
+  std::array<std::vector<std::vector<Eigen::Vector2d>>, 2> mean_value;
+  std::vector<GluedChart> charts;                           // patches relaxed together (map/chart_gluing.h)
+  std::vector<std::optional<PointLocator>> chart_locators;  // #charts, over each chart's target_uv
+  std::vector<int> chart_of;  // #patches: the glued chart holding the patch, -1 when it is on its own
   RelaxationSummary relaxation;
 
-  // Target domain point -> target surface.
+  // A locator over target patch p's parameterization, and the template patch carried into
+  // that domain by Gamma_st (corner i is the same anchor on both sides, the start of the
+  // patch's i-th layout halfedge).
+  void place_by_domain_map(int p) {
+    target_locators[p].emplace(params[1][p].uv, sides[1].patches[p].triangles);
+    const DomainMap domain_map(sides[0].patches[p].polygon, sides[1].patches[p].polygon);
+    source_in_target[p].clear();
+    for (const Eigen::Vector2d& point : params[0][p].uv) source_in_target[p].push_back(domain_map(point));
+  }
+
+  bool own_parameterization_relaxed(int p) const {
+    return !mean_value[0][p].empty() || !mean_value[1][p].empty();
+  }
+
+  // Patch p back to its mean-value parameterizations on both sides, placed by Gamma_st.
+  void restore_mean_value(int p) {
+    for (int side = 0; side < 2; ++side) {
+      if (mean_value[side][p].empty()) continue;
+      params[side][p].uv = std::move(mean_value[side][p]);
+      mean_value[side][p].clear();
+    }
+    place_by_domain_map(p);
+  }
+
+  // Where the map of the mean-value parameterizations is already near an isometry (a mesh
+  // against a moved and scaled copy of itself), keep it: each side's own relaxation stops at
+  // its own rounding, and the two would no longer match exactly.
+  void keep_mean_value_if_isometric(int p, double scale, const MapRelaxationSettings& settings) {
+    std::array<std::vector<Eigen::Vector2d>, 2> relaxed{params[0][p].uv, params[1][p].uv};
+    std::array<std::vector<Eigen::Vector2d>, 2> saved{mean_value[0][p], mean_value[1][p]};
+    restore_mean_value(p);
+    const TargetPatchView target{&sides[1].patches[p], &params[1][p].uv, &*target_locators[p]};
+    MapRelaxationSettings measure_only = settings;
+    measure_only.max_iterations = 0;
+    const MapRelaxationResult mean_value_map =
+        relax_patch_map(sides[0].patches[p], source_in_target[p], target, scale, measure_only);
+    if (mean_value_map.energy_before < settings.min_mean_energy * mean_value_map.area) return;
+    for (int side = 0; side < 2; ++side) {
+      if (saved[side].empty()) continue;
+      mean_value[side][p] = std::move(saved[side]);
+      params[side][p].uv = std::move(relaxed[side]);
+    }
+    place_by_domain_map(p);
+  }
+
+  // Target domain point -> target surface. `patch` is the template patch the point comes
+  // from; its domain is its own polygon or its glued chart's plane.
   MappedPoint map_from_target_domain(int patch, const Eigen::Vector2d& uv_target) const {
-    const PointLocation hit = target_locators[patch]->locate(uv_target);
-    const DiskPatch& target_patch = sides[1].patches[patch];
-    const std::array<int, 3>& corners = target_patch.triangles[hit.triangle];
+    int target = patch;
+    int triangle = -1;
+    PointLocation hit;
+    if (chart_of[patch] >= 0) {
+      hit = chart_locators[chart_of[patch]]->locate(uv_target);
+      std::tie(target, triangle) = std::pair(charts[chart_of[patch]].target_origin[hit.triangle][0],
+                                             charts[chart_of[patch]].target_origin[hit.triangle][1]);
+    } else {
+      hit = target_locators[patch]->locate(uv_target);
+      triangle = hit.triangle;
+    }
+    const DiskPatch& target_patch = sides[1].patches[target];
+    const std::array<int, 3>& corners = target_patch.triangles[triangle];
     Eigen::Vector3d point = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k) point += hit.bary[k] * target_patch.positions[corners[k]];
 
     const Mesh& refined = layout->sides[1].mesh;
-    const int refined_face = sides[1].triangle_faces[patch][hit.triangle];
+    const int refined_face = sides[1].triangle_faces[target][triangle];
     MappedPoint result;
     result.on_input = to_input_point(refined, *inputs[1], refined.face_handle(refined_face), point);
     result.position = position(*inputs[1], result.on_input);
-    result.patch = patch;
+    result.patch = target;
     result.clamp_distance = hit.distance;
     return result;
   }
@@ -68,6 +132,20 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
     m.sides[side] = extract_patches(layout, side);
     m.params[side] = parameterize_patches(m.sides[side].patches);
   }
+  // A parameterization that squeezes a protrusion is relaxed on its own first, on each side.
+  Stopwatch watch;
+  for (int side = 0; side < 2; ++side) m.mean_value[side].resize(layout.patches.size());
+  if (settings.relax) {
+    tbb::parallel_for(0, static_cast<int>(2 * layout.patches.size()), [&](int i) {
+      const int side = i % 2;
+      const int p = i / 2;
+      MapRelaxationResult own =
+          relax_patch_parameterization(m.sides[side].patches[p], m.params[side][p].uv, settings.squeezed);
+      if (own.iterations == 0) return;
+      m.mean_value[side][p] = std::move(m.params[side][p].uv);
+      m.params[side][p].uv = std::move(own.uv);
+    });
+  }
 
   // Per patch: a locator over the target's domain, and the template patch carried into that
   // domain by Gamma_st (corner i is the same anchor on both sides, the start of the patch's
@@ -78,13 +156,11 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
   m.source_in_target.resize(n_patches);
   m.unrelaxed.resize(n_patches);
   std::vector<MapRelaxationResult> relaxed(n_patches);
-  Stopwatch watch;
   tbb::parallel_for(0, n_patches, [&](int p) {
-    m.target_locators[p].emplace(m.params[1][p].uv, m.sides[1].patches[p].triangles);
-    const DomainMap domain_map(m.sides[0].patches[p].polygon, m.sides[1].patches[p].polygon);
-    std::vector<Eigen::Vector2d>& uv = m.source_in_target[p];
-    for (const Eigen::Vector2d& point : m.params[0][p].uv) uv.push_back(domain_map(point));
+    m.place_by_domain_map(p);
     if (!settings.relax) return;
+    if (m.own_parameterization_relaxed(p)) m.keep_mean_value_if_isometric(p, scale, settings.relaxation);
+    std::vector<Eigen::Vector2d>& uv = m.source_in_target[p];
     const TargetPatchView target{&m.sides[1].patches[p], &m.params[1][p].uv, &*m.target_locators[p]};
     relaxed[p] = relax_patch_map(m.sides[0].patches[p], uv, target, scale, settings.relaxation);
     if (relaxed[p].iterations > 0) {
@@ -92,14 +168,43 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
       uv = std::move(relaxed[p].uv);
     }
   });
+  m.chart_of.assign(n_patches, -1);
   if (settings.relax) {
-    double area = 0.0;
+    for (int side = 0; side < 2; ++side) {
+      for (int p = 0; p < n_patches; ++p)
+        m.relaxation.parameterizations[side] += !m.mean_value[side][p].empty();
+    }
+    GluingInput gluing{&layout, &m.sides, &m.params[1], &m.source_in_target, {}, {}, scale};
     for (const MapRelaxationResult& patch : relaxed) {
-      area += patch.area;
-      m.relaxation.energy_before += patch.energy_before;
-      m.relaxation.energy_after += patch.energy_after;
-      if (patch.iterations > 0) ++m.relaxation.patches;
-      m.relaxation.max_iterations = std::max(m.relaxation.max_iterations, patch.iterations);
+      gluing.energy.push_back(patch.energy_after);
+      gluing.area.push_back(patch.area);
+    }
+    m.charts = glue_charts(gluing, settings.gluing);
+    m.chart_locators.resize(m.charts.size());
+    tbb::parallel_for(0, static_cast<int>(m.charts.size()), [&](int c) {
+      m.chart_locators[c].emplace(m.charts[c].target_uv, m.charts[c].target_triangles);
+    });
+    double area = 0.0;
+    for (int p = 0; p < n_patches; ++p) {
+      area += relaxed[p].area;
+      m.relaxation.energy_before += relaxed[p].energy_before;
+      if (relaxed[p].iterations > 0) ++m.relaxation.patches;
+      m.relaxation.max_iterations = std::max(m.relaxation.max_iterations, relaxed[p].iterations);
+    }
+    for (size_t c = 0; c < m.charts.size(); ++c) {
+      for (size_t i = 0; i < m.charts[c].patches.size(); ++i) {
+        const int p = m.charts[c].patches[i];
+        m.chart_of[p] = static_cast<int>(c);
+        if (m.unrelaxed[p].empty()) m.unrelaxed[p] = std::move(m.source_in_target[p]);
+        m.source_in_target[p] = std::move(m.charts[c].source_uv[i]);
+      }
+      m.charts[c].source_uv.clear();  // moved into source_in_target
+      m.relaxation.energy_after += m.charts[c].energy;
+      m.relaxation.glued_patches += static_cast<int>(m.charts[c].patches.size());
+    }
+    m.relaxation.glued_charts = static_cast<int>(m.charts.size());
+    for (int p = 0; p < n_patches; ++p) {
+      if (m.chart_of[p] < 0) m.relaxation.energy_after += relaxed[p].energy_after;
     }
     m.relaxation.energy_before /= area;
     m.relaxation.energy_after /= area;
@@ -176,11 +281,24 @@ std::array<int, 2> CrossMap::inverted_triangles() const {
 const RelaxationSummary& CrossMap::relaxation() const { return impl_->relaxation; }
 
 void CrossMap::undo_relaxation(const std::vector<int>& patches) {
+  Impl& m = *impl_;
+  auto undo_patch = [&m](int p) {
+    if (m.unrelaxed.at(p).empty() && !m.own_parameterization_relaxed(p)) return;
+    ++m.relaxation.undone;
+    m.unrelaxed[p].clear();
+    m.restore_mean_value(p);
+  };
   for (int p : patches) {
-    if (impl_->unrelaxed.at(p).empty()) continue;
-    impl_->source_in_target[p] = std::move(impl_->unrelaxed[p]);
-    impl_->unrelaxed[p].clear();
-    ++impl_->relaxation.undone;
+    const int chart = m.chart_of.at(p);
+    if (chart < 0) {
+      undo_patch(p);
+      continue;
+    }
+    // A glued chart comes apart: every patch of it goes back to its own polygon.
+    for (int q : m.charts[chart].patches) {
+      undo_patch(q);
+      m.chart_of[q] = -1;
+    }
   }
 }
 

@@ -19,6 +19,7 @@
 #include "core/surface_point.h"
 #include "domain/patch_extraction.h"
 #include "layout/layout.h"
+#include "map/chart_gluing.h"
 #include "param/map_relaxation.h"
 #include "param/patch_parameterization.h"
 #include "param/point_locator.h"
@@ -46,15 +47,25 @@ struct CrossMapSettings {
   /// Relax each patch's map (param/map_relaxation.h) after composing Gamma_st . Gamma_s.
   bool relax = true;
   MapRelaxationSettings relaxation;  ///< options of that step
+  /// Before that, each side's patch parameterizations whose mean SD is above 100 (a protrusion
+  /// squeezed by the mean-value weights) are relaxed on their own (relax_patch_parameterization).
+  /// Such a squeeze is exponential in the protrusion's length, so this takes many iterations.
+  MapRelaxationSettings squeezed{300, 1e-4, 100.0};
+  GluingSettings gluing;  ///< relaxing across curves where a patch alone cannot (map/chart_gluing.h)
 };
 
 /// What the relaxation did, summed over the patches (zeros when it was off).
 struct RelaxationSummary {
-  double energy_before =
-      0.0;  ///< symmetric Dirichlet energy of Gamma_st . Gamma_s, over the template's area (4 = isometry)
-  double energy_after = 0.0;  ///< the same after relaxing
+  /// Symmetric Dirichlet energy of Gamma_st . Gamma_s (squeezed parameterizations already
+  /// relaxed), over the template's area (4 = isometry).
+  double energy_before = 0.0;
+  double energy_after = 0.0;  ///< the same after relaxing and gluing (before any undoing)
   int patches = 0;            ///< patches whose energy went down
   int max_iterations = 0;     ///< most SLIM iterations any patch took
+  std::array<int, 2>
+      parameterizations{};  ///< squeezed patch parameterizations relaxed on their own, per side
+  int glued_charts = 0;     ///< charts of several patches relaxed together (map/chart_gluing.h)
+  int glued_patches = 0;    ///< patches in those charts
   int undone =
       0;  ///< patches whose relaxation was undone (map_pair: it left folds the untangling could not remove)
   double seconds = 0.0;  ///< wall-clock time of the step (not deterministic)
@@ -63,8 +74,9 @@ struct RelaxationSummary {
 /// The map between the two sides of a layout, built once and queried for any template point.
 class CrossMap {
  public:
-  /// Parameterize every patch of both sides (in parallel), index the target domains, place
-  /// each template patch in its target domain and relax it there.
+  /// Parameterize every patch of both sides (in parallel) and relax the squeezed ones on their
+  /// own, index the target domains, place each template patch in its target domain and relax it
+  /// there, then glue patches still far from an isometry to neighbours (map/chart_gluing.h).
   /// `inputs[s]` is the input mesh side s was refined from.
   /// \pre layout consistent (check_layout, with triangles = false after merging) and patch ids
   ///   assigned on both sides
@@ -94,8 +106,9 @@ class CrossMap {
   /// What the relaxation did.
   const RelaxationSummary& relaxation() const;
 
-  /// Map the given patches by Gamma_st . Gamma_s again, without their relaxation (a patch's
-  /// boundary is the same either way, so the map stays a bijection).
+  /// Map the given patches by Gamma_st . Gamma_s of their mean-value parameterizations again,
+  /// without any relaxation; a glued chart holding one of them comes apart, all its patches
+  /// undone (a patch's boundary is the same either way, so the map stays a bijection).
   void undo_relaxation(const std::vector<int>& patches);
 
  private:

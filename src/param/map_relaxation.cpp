@@ -316,4 +316,26 @@ MapRelaxationResult relax_patch_map(const DiskPatch& source, std::vector<Eigen::
   return result;
 }
 
+MapRelaxationResult relax_patch_parameterization(const DiskPatch& patch, std::vector<Eigen::Vector2d> uv,
+                                                 const MapRelaxationSettings& settings) {
+  // The polygon as a flat target surface: a fan of its corners, the identity metric.
+  DiskPatch polygon;
+  std::vector<Eigen::Vector2d> corners = patch.polygon;
+  for (const Eigen::Vector2d& corner : corners) polygon.positions.emplace_back(corner.x(), corner.y(), 0.0);
+  double polygon_area = 0.0;
+  for (int k = 1; k + 1 < static_cast<int>(corners.size()); ++k) {
+    polygon.triangles.push_back({0, k, k + 1});
+    polygon_area += 0.5 * signed_area2(corners[0], corners[k], corners[k + 1]);
+  }
+  double patch_area = 0.0;
+  for (const std::array<int, 3>& t : patch.triangles) {
+    patch_area += 0.5 * (patch.positions[t[1]] - patch.positions[t[0]])
+                            .cross(patch.positions[t[2]] - patch.positions[t[0]])
+                            .norm();
+  }
+  const PointLocator locator(corners, polygon.triangles);
+  const TargetPatchView flat{&polygon, &corners, &locator};
+  return relax_patch_map(patch, std::move(uv), flat, std::sqrt(polygon_area / patch_area), settings);
+}
+
 }  // namespace xparam

@@ -67,4 +67,15 @@ MapRelaxationResult relax_patch_map(const DiskPatch& source, std::vector<Eigen::
                                     const TargetPatchView& target, double scale,
                                     const MapRelaxationSettings& settings = {});
 
+/// Relax a patch's own parameterization the same way: `uv` (an embedding in patch.polygon, the
+/// mean-value one, say) slides with the boundary fixed to lower the symmetric Dirichlet energy
+/// of the map from the 3-D patch to its polygon, scaled by sqrt(polygon area / patch area).
+/// Mean-value weights squeeze a protrusion without an anchor into a spot of the polygon whose
+/// size falls exponentially with its length; relaxed, it keeps an area near its 3-D one on
+/// both sides of the cross map, which leaves the cross map's own relaxation little to do.
+/// Deterministic.
+/// \pre uv has one entry per patch vertex and no triangle of non-positive area
+MapRelaxationResult relax_patch_parameterization(const DiskPatch& patch, std::vector<Eigen::Vector2d> uv,
+                                                 const MapRelaxationSettings& settings = {});
+
 }  // namespace xparam

@@ -1,6 +1,7 @@
 #include "param/map_relaxation.h"
 
 #include "param/convex_polygon.h"
+#include "param/patch_parameterization.h"
 #include "patch_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -135,6 +136,42 @@ TEST(MapRelaxation, LeavesAPlacementWithAFlippedTriangleAlone) {
   EXPECT_EQ(result.iterations, 0);
   EXPECT_TRUE(std::isinf(result.energy_before));
   EXPECT_EQ(result.uv, start);
+}
+
+// The unit-square grid with a narrow finger of height 2 raised in its middle: the mean-value
+// parameterization squeezes the finger into a spot of the square.
+DiskPatch finger_patch() {
+  DiskPatch patch = test::planar_grid_patch(40, Eigen::Matrix2d::Identity(), 5);
+  for (Eigen::Vector3d& x : patch.positions) {
+    x.z() = 2.0 * std::exp(-(x.head<2>() - Eigen::Vector2d(0.5, 0.5)).squaredNorm() / (2.0 * 0.05 * 0.05));
+  }
+  return patch;
+}
+
+// Share of the uv area taken by the faces whose 3-D centroid is high on the finger.
+double finger_uv_share(const DiskPatch& patch, const std::vector<Eigen::Vector2d>& uv) {
+  double finger = 0.0;
+  double total = 0.0;
+  for (const std::array<int, 3>& t : patch.triangles) {
+    const double area = 0.5 * signed_area2(uv[t[0]], uv[t[1]], uv[t[2]]);
+    total += area;
+    if ((patch.positions[t[0]].z() + patch.positions[t[1]].z() + patch.positions[t[2]].z()) / 3.0 > 1.0)
+      finger += area;
+  }
+  return finger / total;
+}
+
+TEST(PatchParameterizationRelaxation, GivesASqueezedFingerRoomInThePolygon) {
+  const DiskPatch patch = finger_patch();
+  const std::vector<Eigen::Vector2d> mean_value = parameterize_patch(patch).uv;
+  const MapRelaxationResult result = relax_patch_parameterization(patch, mean_value, {300, 1e-4, 4.4});
+  EXPECT_GT(result.energy_before, 100.0 * result.area);        // measured: mean SD 1773
+  EXPECT_LT(result.energy_after, 0.1 * result.energy_before);  // measured: 17.2
+  EXPECT_EQ(flipped(patch, result.uv), 0);
+  for (int v : patch.boundary_loop) EXPECT_EQ(result.uv[v], mean_value[v]) << v;
+  // The finger's faces hold a share of the 3-D area far above their mean-value share of the square.
+  // Measured: 5.2% of the square against 0.23%.
+  EXPECT_GT(finger_uv_share(patch, result.uv), 10.0 * finger_uv_share(patch, mean_value));
 }
 
 }  // namespace
