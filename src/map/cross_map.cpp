@@ -28,8 +28,7 @@ struct CrossMap::Impl {
   // #patches: each template patch vertex in the target polygon, Gamma_st . Gamma_s relaxed;
   // a template triangle maps affinely onto the triangle of its corners' entries.
   std::vector<std::vector<Eigen::Vector2d>> source_in_target;
-  std::vector<std::vector<Eigen::Vector2d>>
-      unrelaxed;  // #patches, Gamma_st . Gamma_s itself (empty when not relaxed)
+  std::vector<char> relaxed_placement;  // #patches: source_in_target is not Gamma_st . Gamma_s itself
   std::vector<std::vector<int>> source_refined_faces;  // #source input faces: refined faces inside it
   // #sides x #patches: the mean-value parameterization of a patch whose own was relaxed (empty otherwise).
   std::array<std::vector<std::vector<Eigen::Vector2d>>, 2> mean_value;
@@ -154,7 +153,7 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
   const double scale = std::sqrt(surface_area(*inputs[1]) / surface_area(*inputs[0]));
   m.target_locators.resize(n_patches);
   m.source_in_target.resize(n_patches);
-  m.unrelaxed.resize(n_patches);
+  m.relaxed_placement.assign(n_patches, 0);
   std::vector<MapRelaxationResult> relaxed(n_patches);
   tbb::parallel_for(0, n_patches, [&](int p) {
     m.place_by_domain_map(p);
@@ -164,8 +163,8 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
     const TargetPatchView target{&m.sides[1].patches[p], &m.params[1][p].uv, &*m.target_locators[p]};
     relaxed[p] = relax_patch_map(m.sides[0].patches[p], uv, target, scale, settings.relaxation);
     if (relaxed[p].iterations > 0) {
-      m.unrelaxed[p] = std::move(uv);
       uv = std::move(relaxed[p].uv);
+      m.relaxed_placement[p] = 1;
     }
   });
   m.chart_of.assign(n_patches, -1);
@@ -195,7 +194,7 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
       for (size_t i = 0; i < m.charts[c].patches.size(); ++i) {
         const int p = m.charts[c].patches[i];
         m.chart_of[p] = static_cast<int>(c);
-        if (m.unrelaxed[p].empty()) m.unrelaxed[p] = std::move(m.source_in_target[p]);
+        m.relaxed_placement[p] = 1;
         m.source_in_target[p] = std::move(m.charts[c].source_uv[i]);
       }
       m.charts[c].source_uv.clear();  // moved into source_in_target
@@ -282,11 +281,17 @@ const RelaxationSummary& CrossMap::relaxation() const { return impl_->relaxation
 
 void CrossMap::undo_relaxation(const std::vector<int>& patches) {
   Impl& m = *impl_;
+  // First the relaxation of the patch map (placed by Gamma_st . Gamma_s again); a patch
+  // asked again loses its own parameterizations' relaxation too.
   auto undo_patch = [&m](int p) {
-    if (m.unrelaxed.at(p).empty() && !m.own_parameterization_relaxed(p)) return;
-    ++m.relaxation.undone;
-    m.unrelaxed[p].clear();
-    m.restore_mean_value(p);
+    if (m.relaxed_placement.at(p)) {
+      m.relaxed_placement[p] = 0;
+      m.place_by_domain_map(p);
+      ++m.relaxation.undone;
+    } else if (m.own_parameterization_relaxed(p)) {
+      m.restore_mean_value(p);
+      ++m.relaxation.undone;
+    }
   };
   for (int p : patches) {
     const int chart = m.chart_of.at(p);

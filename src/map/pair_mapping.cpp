@@ -133,9 +133,10 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   const std::vector<std::array<int, 3>> faces = triangles_of(source);
   ComposedImages composed = compose_images(cross, source, target, anchor_points, settings);
   // Relaxing can leave a fold in a strongly curved spot (a heel, a hoof) that the untangling
-  // cannot remove; those patches go back to Gamma_st . Gamma_s and everything is composed again
-  // (a few rounds: the new untangling may leave a fold elsewhere).
-  for (int round = 0; round < 3 && settings.cross_map.relax && composed.untangled.flipped_after > 0;
+  // cannot remove; those patches go back to Gamma_st . Gamma_s (then, if asked again, to their
+  // mean-value parameterizations) and everything is composed again (a few rounds: the new
+  // untangling may leave a fold elsewhere).
+  for (int round = 0; round < 4 && settings.cross_map.relax && composed.untangled.flipped_after > 0;
        ++round) {
     const int undone = cross.relaxation().undone;
     cross.undo_relaxation(patches_of_folds(faces, composed.untangled.images, target));
