@@ -184,7 +184,10 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
       m.chart_locators[c].emplace(m.charts[c].target_uv, m.charts[c].target_triangles);
     });
     double area = 0.0;
+    // A placement that rounding left folded (energy infinite, never relaxed) is not counted.
+    auto embedded = [&relaxed](int p) { return std::isfinite(relaxed[p].energy_before); };
     for (int p = 0; p < n_patches; ++p) {
+      if (!embedded(p)) continue;
       area += relaxed[p].area;
       m.relaxation.energy_before += relaxed[p].energy_before;
       if (relaxed[p].iterations > 0) ++m.relaxation.patches;
@@ -203,7 +206,7 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
     }
     m.relaxation.glued_charts = static_cast<int>(m.charts.size());
     for (int p = 0; p < n_patches; ++p) {
-      if (m.chart_of[p] < 0) m.relaxation.energy_after += relaxed[p].energy_after;
+      if (m.chart_of[p] < 0 && embedded(p)) m.relaxation.energy_after += relaxed[p].energy_after;
     }
     m.relaxation.energy_before /= area;
     m.relaxation.energy_after /= area;
@@ -305,6 +308,33 @@ void CrossMap::undo_relaxation(const std::vector<int>& patches) {
       m.chart_of[q] = -1;
     }
   }
+}
+
+struct CrossMap::Saved {
+  std::array<std::vector<PatchParameterizationResult>, 2> params;
+  std::array<std::vector<std::vector<Eigen::Vector2d>>, 2> mean_value;
+  std::vector<std::optional<PointLocator>> target_locators;
+  std::vector<std::vector<Eigen::Vector2d>> source_in_target;
+  std::vector<char> relaxed_placement;
+  std::vector<int> chart_of;
+  RelaxationSummary relaxation;
+};
+
+std::shared_ptr<const CrossMap::Saved> CrossMap::save() const {
+  const Impl& m = *impl_;
+  return std::make_shared<const Saved>(Saved{m.params, m.mean_value, m.target_locators, m.source_in_target,
+                                             m.relaxed_placement, m.chart_of, m.relaxation});
+}
+
+void CrossMap::restore(const Saved& saved) {
+  Impl& m = *impl_;
+  m.params = saved.params;
+  m.mean_value = saved.mean_value;
+  m.target_locators = saved.target_locators;
+  m.source_in_target = saved.source_in_target;
+  m.relaxed_placement = saved.relaxed_placement;
+  m.chart_of = saved.chart_of;
+  m.relaxation = saved.relaxation;
 }
 
 std::array<int, 2> CrossMap::fallback_polygons() const {

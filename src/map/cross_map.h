@@ -57,7 +57,8 @@ struct CrossMapSettings {
 /// What the relaxation did, summed over the patches (zeros when it was off).
 struct RelaxationSummary {
   /// Symmetric Dirichlet energy of Gamma_st . Gamma_s (squeezed parameterizations already
-  /// relaxed), over the template's area (4 = isometry).
+  /// relaxed), over the template's area (4 = isometry); patches whose placement rounding left
+  /// folded (never relaxed) are left out.
   double energy_before = 0.0;
   double energy_after = 0.0;  ///< the same after relaxing and gluing (before any undoing)
   int patches = 0;            ///< patches whose energy went down
@@ -106,10 +107,17 @@ class CrossMap {
   /// What the relaxation did.
   const RelaxationSummary& relaxation() const;
 
-  /// Map the given patches by Gamma_st . Gamma_s of their mean-value parameterizations again,
-  /// without any relaxation; a glued chart holding one of them comes apart, all its patches
-  /// undone (a patch's boundary is the same either way, so the map stays a bijection).
+  /// Undo the relaxation of the given patches one step: a patch whose map was relaxed (or glued)
+  /// is mapped by Gamma_st . Gamma_s of its parameterizations again, and a glued chart holding it
+  /// comes apart, all its patches undone; a patch asked again (only its own parameterizations
+  /// were relaxed) goes back to its mean-value parameterizations. A patch's boundary is the same
+  /// either way, so the map stays a bijection.
   void undo_relaxation(const std::vector<int>& patches);
+
+  /// Everything undo_relaxation changes, copied, to take undos back with restore().
+  struct Saved;
+  std::shared_ptr<const Saved> save() const;
+  void restore(const Saved& saved);
 
  private:
   struct Impl;

@@ -135,14 +135,22 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   // Relaxing can leave a fold in a strongly curved spot (a heel, a hoof) that the untangling
   // cannot remove; those patches go back to Gamma_st . Gamma_s (then, if asked again, to their
   // mean-value parameterizations) and everything is composed again (a few rounds: the new
-  // untangling may leave a fold elsewhere).
-  for (int round = 0; round < 4 && settings.cross_map.relax && composed.untangled.flipped_after > 0;
-       ++round) {
+  // untangling may leave a fold elsewhere). Undoing costs quality, so it is kept only when it
+  // leaves fewer folds: the round with the fewest wins, the earliest on a tie.
+  std::shared_ptr<const CrossMap::Saved> best_state;
+  ComposedImages current = composed;
+  for (int round = 0; round < 4 && settings.cross_map.relax && current.untangled.flipped_after > 0; ++round) {
     const int undone = cross.relaxation().undone;
-    cross.undo_relaxation(patches_of_folds(faces, composed.untangled.images, target));
+    if (!best_state) best_state = cross.save();
+    cross.undo_relaxation(patches_of_folds(faces, current.untangled.images, target));
     if (cross.relaxation().undone == undone) break;
-    composed = compose_images(cross, source, target, anchor_points, settings);
+    current = compose_images(cross, source, target, anchor_points, settings);
+    if (current.untangled.flipped_after < composed.untangled.flipped_after) {
+      composed = current;
+      best_state = cross.save();
+    }
   }
+  if (best_state) cross.restore(*best_state);
   result.relaxation = cross.relaxation();
   std::vector<MappedPoint>& images = composed.untangled.images;
   const TemplateWarp& warp = composed.untangled.warp;

@@ -3,10 +3,10 @@
 // stays bijective on the human pair and is still the identity for a mesh against itself.
 #include "map/cross_map.h"
 
+#include "domain/patch_extraction.h"
 #include "domain/patch_merging.h"
 #include "layout/layout_check.h"
 #include "layout/layout_fixtures.h"
-#include "domain/patch_extraction.h"
 #include "param/convex_polygon.h"
 #include "support/test_data.h"
 
@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <numeric>
 
 namespace xparam {
 namespace {
@@ -46,7 +47,8 @@ TEST(PatchPolygon, ConcaveOrDegenerateLpbdsFallBackToConvexPolygons) {
   EXPECT_FALSE(open.lpbd.valid);
   EXPECT_TRUE(open.fallback);
   ASSERT_TRUE(is_strictly_convex(open.corners));
-  for (int i = 0; i < 4; ++i) EXPECT_NEAR((open.corners[(i + 1) % 4] - open.corners[i]).norm(), chords[i], 1e-9);
+  for (int i = 0; i < 4; ++i)
+    EXPECT_NEAR((open.corners[(i + 1) % 4] - open.corners[i]).norm(), chords[i], 1e-9);
   // Neither closes: corners on a circle, still strictly convex.
   const PatchPolygon circle = patch_polygon({1, 1, 1, 5}, dart, {1, 1, 1, 3});
   EXPECT_TRUE(circle.fallback);
@@ -133,6 +135,38 @@ TEST(QuadMapping, MergedMeshAgainstItselfIsTheIdentity) {
     worst = std::max(worst, (map.map_vertex(v).position - position(h.man, VertexHandle(v))).norm());
   }
   EXPECT_LT(worst, 1e-9);
+}
+
+TEST(QuadMapping, UndoingEveryPatchGivesThePapersMapAndRestoreTakesItBack) {
+  const Humans& h = humans();
+  const Layout layout = merged_layout(h.man, h.woman, h.anchors);
+  CrossMap relaxed(layout, {&h.man, &h.woman});
+  CrossMapSettings paper;
+  paper.relax = false;
+  const CrossMap unrelaxed(layout, {&h.man, &h.woman}, paper);
+  ASSERT_GE(relaxed.relaxation().patches, 1);
+  std::vector<int> every_patch(layout.patches.size());
+  std::iota(every_patch.begin(), every_patch.end(), 0);
+  const int n_vertices = static_cast<int>(h.man.n_vertices());
+  std::vector<Eigen::Vector3d> before(n_vertices);
+  for (int v = 0; v < n_vertices; ++v) before[v] = relaxed.map_vertex(v).position;
+
+  const auto saved = relaxed.save();
+  // Two steps: the patch maps' relaxation and gluing, then the squeezed parameterizations'.
+  relaxed.undo_relaxation(every_patch);
+  relaxed.undo_relaxation(every_patch);
+  double from_paper = 0.0;
+  double moved = 0.0;
+  for (int v = 0; v < n_vertices; ++v) {
+    const Eigen::Vector3d undone = relaxed.map_vertex(v).position;
+    from_paper = std::max(from_paper, (undone - unrelaxed.map_vertex(v).position).norm());
+    moved = std::max(moved, (undone - before[v]).norm());
+  }
+  EXPECT_LT(from_paper, 1e-12);
+  EXPECT_GT(moved, 1e-3);
+
+  relaxed.restore(*saved);
+  for (int v = 0; v < n_vertices; ++v) EXPECT_EQ(relaxed.map_vertex(v).position, before[v]) << v;
 }
 
 }  // namespace
