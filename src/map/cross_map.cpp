@@ -131,18 +131,27 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
     m.sides[side] = extract_patches(layout, side);
     m.params[side] = parameterize_patches(m.sides[side].patches);
   }
-  // A parameterization that squeezes a protrusion is relaxed on its own first, on each side.
+  // A parameterization that squeezes a protrusion is relaxed on its own first, and then the
+  // other side's of the same patch too: a relaxed parameterization against a mean-value one
+  // would squeeze the template's protrusion onto the target's wherever the map's own relaxation
+  // is undone.
   Stopwatch watch;
   for (int side = 0; side < 2; ++side) m.mean_value[side].resize(layout.patches.size());
   if (settings.relax) {
-    tbb::parallel_for(0, static_cast<int>(2 * layout.patches.size()), [&](int i) {
-      const int side = i % 2;
-      const int p = i / 2;
+    const int n = static_cast<int>(layout.patches.size());
+    auto relax_own = [&m](int side, int p, const MapRelaxationSettings& how) {
       MapRelaxationResult own =
-          relax_patch_parameterization(m.sides[side].patches[p], m.params[side][p].uv, settings.squeezed);
+          relax_patch_parameterization(m.sides[side].patches[p], m.params[side][p].uv, how);
       if (own.iterations == 0) return;
       m.mean_value[side][p] = std::move(m.params[side][p].uv);
       m.params[side][p].uv = std::move(own.uv);
+    };
+    tbb::parallel_for(0, 2 * n, [&](int i) { relax_own(i % 2, i / 2, settings.squeezed); });
+    MapRelaxationSettings partner = settings.squeezed;
+    partner.min_mean_energy = settings.relaxation.min_mean_energy;
+    tbb::parallel_for(0, n, [&](int p) {
+      const bool relaxed[2] = {!m.mean_value[0][p].empty(), !m.mean_value[1][p].empty()};
+      if (relaxed[0] != relaxed[1]) relax_own(relaxed[0] ? 1 : 0, p, partner);
     });
   }
 
