@@ -39,7 +39,8 @@ struct GluingSettings {
   double min_mean_energy = 8.0;  ///< a chart is glued when its mean SD (4 = isometry) is above this
   double min_gain = 0.05;        ///< a union is kept when it lowers the two charts' energy by this fraction
   int max_rounds = 3;            ///< rounds of gluing (a chart may grow by one neighbour per round)
-  MapRelaxationSettings relaxation;  ///< how each union is relaxed
+  /// How each union is relaxed: longer than one patch (unions are few, and start far from their optimum).
+  MapRelaxationSettings relaxation{100, 1e-4, 0.0};
 };
 
 /// Everything the gluing reads, patch by patch (`sides` and `target_params` as CrossMap builds them).
