@@ -166,7 +166,7 @@ std::vector<std::array<int, 2>> halfedge_places(const Layout& layout) {
 }
 
 // A union to try: chart `onto` keeps its plane, chart `moving` is glued to it across layout
-// halfedge `halfedge` (on the left of patch `onto_patch`, index in `onto`'s patches).
+// halfedge `halfedge` (whose left patch is in `onto`, its opposite's in `moving`).
 struct Candidate {
   int onto = -1;
   int moving = -1;

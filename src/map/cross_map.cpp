@@ -13,7 +13,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <tuple>
 #include <utility>
 
 namespace xparam {
@@ -90,8 +89,9 @@ struct CrossMap::Impl {
     PointLocation hit;
     if (chart_of[patch] >= 0) {
       hit = chart_locators[chart_of[patch]]->locate(uv_target);
-      std::tie(target, triangle) = std::pair(charts[chart_of[patch]].target_origin[hit.triangle][0],
-                                             charts[chart_of[patch]].target_origin[hit.triangle][1]);
+      const std::array<int, 2>& origin = charts[chart_of[patch]].target_origin[hit.triangle];
+      target = origin[0];
+      triangle = origin[1];
     } else {
       hit = target_locators[patch]->locate(uv_target);
       triangle = hit.triangle;
