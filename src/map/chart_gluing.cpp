@@ -179,6 +179,8 @@ class Gluing {
       : input_(input), settings_(settings), places_(halfedge_places(*input.layout)) {
     relaxation_ = settings.relaxation;
     relaxation_.min_mean_energy = 0.0;  // a union is tried because it is far from an isometry
+    trial_ = relaxation_;
+    trial_.max_iterations = std::min(settings.trial_iterations, relaxation_.max_iterations);
   }
 
   // The union of two charts, relaxed; nullopt when it would not be a disk, the polygons overlap
@@ -234,19 +236,25 @@ class Gluing {
     std::sort(curve.begin(), curve.end());
     if (shared != curve) return std::nullopt;
 
-    const ChartMesh mesh = chart_mesh(result, input_);
-    if (mesh.source.boundary_loop.empty()) return std::nullopt;
+    if (!relax(result, trial_)) return std::nullopt;
+    return result;
+  }
+
+  // Relax a chart's template vertices in its plane; false when the chart is not a disk.
+  bool relax(Chart& chart, const MapRelaxationSettings& how) const {
+    const ChartMesh mesh = chart_mesh(chart, input_);
+    if (mesh.source.boundary_loop.empty()) return false;
     const PointLocator locator(mesh.target_uv, mesh.target.triangles);
     const TargetPatchView target{&mesh.target, &mesh.target_uv, &locator};
-    MapRelaxationResult relaxed =
-        relax_patch_map(mesh.source, mesh.source_uv, target, input_.scale, relaxation_);
-    result.energy = relaxed.energy_after;
-    result.area = relaxed.area;
-    for (size_t i = 0; i < result.patches.size(); ++i) {
-      for (size_t v = 0; v < result.source[i].size(); ++v)
-        result.source[i][v] = relaxed.uv[mesh.to_union[i][v]];
+    const MapRelaxationResult relaxed =
+        relax_patch_map(mesh.source, mesh.source_uv, target, input_.scale, how);
+    chart.energy = relaxed.energy_after;
+    chart.area = relaxed.area;
+    for (size_t i = 0; i < chart.patches.size(); ++i) {
+      for (size_t v = 0; v < chart.source[i].size(); ++v)
+        chart.source[i][v] = relaxed.uv[mesh.to_union[i][v]];
     }
-    return result;
+    return true;
   }
 
   std::vector<GluedChart> run() {
@@ -276,7 +284,7 @@ class Gluing {
       std::iota(order.begin(), order.end(), 0);
       std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return gain[x] > gain[y]; });
       std::vector<bool> taken(n_patches, false);
-      bool changed = false;
+      std::vector<int> kept;
       for (size_t i : order) {
         const Candidate& candidate = candidates[i];
         if (!(gain[i] > 0.0) || taken[candidate.onto] || taken[candidate.moving]) continue;
@@ -284,9 +292,12 @@ class Gluing {
         for (int p : charts[candidate.moving]->patches) chart_of[p] = candidate.onto;
         charts[candidate.onto] = std::move(unions[i]);
         charts[candidate.moving].reset();
-        changed = true;
+        kept.push_back(candidate.onto);
       }
-      if (!changed) break;
+      if (kept.empty()) break;
+      // The trial relaxation only ranked the unions; the kept ones go on from there.
+      tbb::parallel_for(0, static_cast<int>(kept.size()),
+                        [&](int k) { relax(*charts[kept[k]], relaxation_); });
     }
     return glued(charts);
   }
@@ -346,7 +357,8 @@ class Gluing {
 
   const GluingInput& input_;
   const GluingSettings& settings_;
-  MapRelaxationSettings relaxation_;
+  MapRelaxationSettings relaxation_;        // for the unions kept
+  MapRelaxationSettings trial_;             // for ranking the candidates
   std::vector<std::array<int, 2>> places_;  // #layout halfedges: (patch, side index)
 };
 

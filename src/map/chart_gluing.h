@@ -39,6 +39,7 @@ struct GluingSettings {
   double min_mean_energy = 8.0;  ///< a chart is glued when its mean SD (4 = isometry) is above this
   double min_gain = 0.05;        ///< a union is kept when it lowers the two charts' energy by this fraction
   int max_rounds = 3;            ///< rounds of gluing (a chart may grow by one neighbour per round)
+  int trial_iterations = 20;     ///< SLIM iterations that rank a candidate union (the kept ones go on)
   /// How each union is relaxed: longer than one patch (unions are few, and start far from their optimum).
   MapRelaxationSettings relaxation{100, 1e-4, 0.0};
 };

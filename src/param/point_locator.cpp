@@ -123,7 +123,16 @@ void PointLocator::test_cell(int cx, int cy, const Eigen::Vector2d& p, PointLoca
   for (int i = cell_start_[cell]; i < cell_start_[cell + 1]; ++i) {
     const int f = cell_triangles_[i];
     const auto& t = triangles_[f];
-    PointLocation candidate = nearest_point_in_triangle(p, uv_[t[0]], uv_[t[1]], uv_[t[2]]);
+    // Skip what cannot win: a later triangle once p lies inside one, or a triangle whose
+    // bounding box is already farther than the best (the answer is the same, found faster).
+    if (best.distance == 0.0 && f > best.triangle) continue;
+    const Eigen::Vector2d& a = uv_[t[0]];
+    const Eigen::Vector2d& b = uv_[t[1]];
+    const Eigen::Vector2d& c = uv_[t[2]];
+    const Eigen::Vector2d below = a.cwiseMin(b).cwiseMin(c) - p;
+    const Eigen::Vector2d above = p - a.cwiseMax(b).cwiseMax(c);
+    if (below.cwiseMax(above).cwiseMax(0.0).norm() > best.distance) continue;
+    PointLocation candidate = nearest_point_in_triangle(p, a, b, c);
     // Lowest index wins a tie, as in a scan over all triangles in order.
     if (candidate.distance < best.distance || (candidate.distance == best.distance && f < best.triangle)) {
       candidate.triangle = f;
