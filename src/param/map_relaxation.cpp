@@ -152,7 +152,7 @@ class Relaxation {
 
   // One SLIM target: the minimizer of the reweighted quadratic proxy at `uv`.
   std::vector<Eigen::Vector2d> proxy_minimizer(const std::vector<Eigen::Vector2d>& uv,
-                                               const std::vector<Matrix2>& roots) const {
+                                               const std::vector<Matrix2>& roots) {
     std::vector<Eigen::Triplet<double>> entries;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * free_count_);
     for (size_t f = 0; f < source_.triangles.size(); ++f) {
@@ -195,11 +195,16 @@ class Relaxation {
     }
     Eigen::SparseMatrix<double> system(2 * free_count_, 2 * free_count_);
     system.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system);
+    // Every iteration assembles the same entries, so the ordering is computed once.
+    if (!pattern_analyzed_) {
+      solver_.analyzePattern(system);
+      pattern_analyzed_ = true;
+    }
+    solver_.factorize(system);
     std::vector<Eigen::Vector2d> result = uv;
-    if (solver.info() != Eigen::Success) return result;
-    const Eigen::VectorXd solution = solver.solve(rhs);
-    if (solver.info() != Eigen::Success || !solution.allFinite()) return result;
+    if (solver_.info() != Eigen::Success) return result;
+    const Eigen::VectorXd solution = solver_.solve(rhs);
+    if (solver_.info() != Eigen::Success || !solution.allFinite()) return result;
     for (size_t v = 0; v < uv.size(); ++v) {
       if (free_index_[v] >= 0) result[v] = solution.segment<2>(2 * free_index_[v]);
     }
@@ -271,6 +276,8 @@ class Relaxation {
   std::vector<FaceFrame> frames_;
   double area_ = 0.0;
   std::vector<int> free_index_;  // #V: unknown index of a free vertex, -1 on the boundary
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;  // of the SLIM proxy
+  bool pattern_analyzed_ = false;
   int free_count_ = 0;
 };
 
@@ -281,7 +288,7 @@ MapRelaxationResult relax_patch_map(const DiskPatch& source, std::vector<Eigen::
                                     const MapRelaxationSettings& settings) {
   XP_ASSERT_EQ(initial_uv.size(), source.positions.size());
   XP_ASSERT(target.patch && target.uv && target.locator && scale > 0.0);
-  const Relaxation relaxation(source, target, scale);
+  Relaxation relaxation(source, target, scale);
   MapRelaxationResult result;
   result.uv = std::move(initial_uv);
   result.area = relaxation.area();
