@@ -36,14 +36,22 @@ struct CrossMap::Impl {
   std::vector<int> chart_of;  // #patches: the glued chart holding the patch, -1 when it is on its own
   RelaxationSummary relaxation;
 
-  // A locator over target patch p's parameterization, and the template patch carried into
-  // that domain by Gamma_st (corner i is the same anchor on both sides, the start of the
-  // patch's i-th layout halfedge).
+  // Template patch p's vertices at `source_uv` in its own polygon, carried into the target
+  // polygon by Gamma_st (corner i is the same anchor on both sides, the start of the patch's
+  // i-th layout halfedge).
+  std::vector<Eigen::Vector2d> by_domain_map(int p, const std::vector<Eigen::Vector2d>& source_uv) const {
+    const DomainMap domain_map(sides[0].patches[p].polygon, sides[1].patches[p].polygon);
+    std::vector<Eigen::Vector2d> placed;
+    placed.reserve(source_uv.size());
+    for (const Eigen::Vector2d& point : source_uv) placed.push_back(domain_map(point));
+    return placed;
+  }
+
+  // A locator over target patch p's parameterization, and the template patch placed in it by
+  // Gamma_st . Gamma_s.
   void place_by_domain_map(int p) {
     target_locators[p].emplace(params[1][p].uv, sides[1].patches[p].triangles);
-    const DomainMap domain_map(sides[0].patches[p].polygon, sides[1].patches[p].polygon);
-    source_in_target[p].clear();
-    for (const Eigen::Vector2d& point : params[0][p].uv) source_in_target[p].push_back(domain_map(point));
+    source_in_target[p] = by_domain_map(p, params[0][p].uv);
   }
 
   bool own_parameterization_relaxed(int p) const {
@@ -60,25 +68,20 @@ struct CrossMap::Impl {
     place_by_domain_map(p);
   }
 
-  // Where the map of the mean-value parameterizations is already near an isometry (a mesh
-  // against a moved and scaled copy of itself), keep it: each side's own relaxation stops at
-  // its own rounding, and the two would no longer match exactly.
-  void keep_mean_value_if_isometric(int p, double scale, const MapRelaxationSettings& settings) {
-    std::array<std::vector<Eigen::Vector2d>, 2> relaxed{params[0][p].uv, params[1][p].uv};
-    std::array<std::vector<Eigen::Vector2d>, 2> saved{mean_value[0][p], mean_value[1][p]};
-    restore_mean_value(p);
-    const TargetPatchView target{&sides[1].patches[p], &params[1][p].uv, &*target_locators[p]};
+  // True when the map of patch p's mean-value parameterizations is already near an isometry (a
+  // mesh against a moved and scaled copy of itself). Then they are kept: each side's own
+  // relaxation stops at its own rounding, and the two would no longer match exactly.
+  bool mean_value_map_is_isometric(int p, double scale, const MapRelaxationSettings& settings) const {
+    auto mean_value_of = [this, p](int side) -> const std::vector<Eigen::Vector2d>& {
+      return mean_value[side][p].empty() ? params[side][p].uv : mean_value[side][p];
+    };
+    const PointLocator locator(mean_value_of(1), sides[1].patches[p].triangles);
+    const TargetPatchView target{&sides[1].patches[p], &mean_value_of(1), &locator};
     MapRelaxationSettings measure_only = settings;
     measure_only.max_iterations = 0;
-    const MapRelaxationResult mean_value_map =
-        relax_patch_map(sides[0].patches[p], source_in_target[p], target, scale, measure_only);
-    if (mean_value_map.energy_before < settings.min_mean_energy * mean_value_map.area) return;
-    for (int side = 0; side < 2; ++side) {
-      if (saved[side].empty()) continue;
-      mean_value[side][p] = std::move(saved[side]);
-      params[side][p].uv = std::move(relaxed[side]);
-    }
-    place_by_domain_map(p);
+    const MapRelaxationResult map =
+        relax_patch_map(sides[0].patches[p], by_domain_map(p, mean_value_of(0)), target, scale, measure_only);
+    return map.energy_before < settings.min_mean_energy * map.area;
   }
 
   // Target domain point -> target surface. `patch` is the template patch the point comes
@@ -165,9 +168,13 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
   m.relaxed_placement.assign(n_patches, 0);
   std::vector<MapRelaxationResult> relaxed(n_patches);
   tbb::parallel_for(0, n_patches, [&](int p) {
-    m.place_by_domain_map(p);
+    if (settings.relax && m.own_parameterization_relaxed(p) &&
+        m.mean_value_map_is_isometric(p, scale, settings.relaxation)) {
+      m.restore_mean_value(p);
+    } else {
+      m.place_by_domain_map(p);
+    }
     if (!settings.relax) return;
-    if (m.own_parameterization_relaxed(p)) m.keep_mean_value_if_isometric(p, scale, settings.relaxation);
     std::vector<Eigen::Vector2d>& uv = m.source_in_target[p];
     const TargetPatchView target{&m.sides[1].patches[p], &m.params[1][p].uv, &*m.target_locators[p]};
     relaxed[p] = relax_patch_map(m.sides[0].patches[p], uv, target, scale, settings.relaxation);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 namespace xparam {
 namespace {
@@ -138,19 +139,22 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   // untangling may leave a fold elsewhere). Undoing costs quality, so it is kept only when it
   // leaves fewer folds: the round with the fewest wins, the earliest on a tie.
   std::shared_ptr<const CrossMap::Saved> best_state;
-  ComposedImages current = composed;
-  for (int round = 0; round < 4 && settings.cross_map.relax && current.untangled.flipped_after > 0; ++round) {
+  std::optional<ComposedImages> later;  // the latest round's images while they are not the best
+  for (int round = 0; round < 4 && settings.cross_map.relax; ++round) {
+    const ComposedImages& latest = later ? *later : composed;
+    if (latest.untangled.flipped_after == 0) break;
     const int undone = cross.relaxation().undone;
     if (!best_state) best_state = cross.save();
-    cross.undo_relaxation(patches_of_folds(faces, current.untangled.images, target));
+    cross.undo_relaxation(patches_of_folds(faces, latest.untangled.images, target));
     if (cross.relaxation().undone == undone) break;
-    current = compose_images(cross, source, target, anchor_points, settings);
-    if (current.untangled.flipped_after < composed.untangled.flipped_after) {
-      composed = current;
+    later = compose_images(cross, source, target, anchor_points, settings);
+    if (later->untangled.flipped_after < composed.untangled.flipped_after) {
+      composed = std::move(*later);
+      later.reset();
       best_state = cross.save();
     }
   }
-  if (best_state) cross.restore(*best_state);
+  if (later) cross.restore(*best_state);
   result.relaxation = cross.relaxation();
   std::vector<MappedPoint>& images = composed.untangled.images;
   const TemplateWarp& warp = composed.untangled.warp;

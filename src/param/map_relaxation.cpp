@@ -327,7 +327,7 @@ MapRelaxationResult relax_patch_parameterization(const DiskPatch& patch, std::ve
                                                  const MapRelaxationSettings& settings) {
   // The polygon as a flat target surface: a fan of its corners, the identity metric.
   DiskPatch polygon;
-  std::vector<Eigen::Vector2d> corners = patch.polygon;
+  const std::vector<Eigen::Vector2d>& corners = patch.polygon;
   for (const Eigen::Vector2d& corner : corners) polygon.positions.emplace_back(corner.x(), corner.y(), 0.0);
   double polygon_area = 0.0;
   for (int k = 1; k + 1 < static_cast<int>(corners.size()); ++k) {
