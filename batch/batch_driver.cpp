@@ -116,7 +116,9 @@ std::string batch_options_json(const PairSettings& settings) {
   options["optimization"]["metric"] = std::string(to_string(settings.optimization.metric));
   options["optimization"]["merge"] = settings.optimization.merge;
   options["optimization"]["contact_clearance"] = settings.optimization.stretching.contact_clearance;
+  options["optimization"]["keep_corners"] = settings.optimization.stretching.keep_corners;
   options["relax"] = settings.cross_map.relax;
+  options["second_layout"] = settings.retry_keeping_corners;
   options["untangle"] = settings.untangle;
   return options.dump();
 }

@@ -4,7 +4,9 @@
 // built, no stretching, swapping or merging; Stretched: boundaries straightened only; By SDL:
 // greedy swapping on eq. 13 for every curve; By AD / By L2: greedy swapping on the dense metrics
 // of section 4.1, the real maps of the two patches; Balanced: section 4.3; Balanced + merging:
-// section 5 after it), it runs the whole pair pipeline (map_pair, remesh untangling on) and
+// section 5 after it, the default; then the default without its second layout (map_pair's retry
+// with corners kept when the map folds), with corners kept on its only layout, and without
+// relaxing the patch maps), it runs the whole pair pipeline (map_pair, remesh untangling on) and
 // prints E_L2 (eq. 6), E_ang (eq. 3), the flipped remesh faces, the area ratio (remesh over
 // target), the swaps and merges, the seconds of the optimization and of the whole pair, and,
 // for pairs whose meshes share a vertex order (exact ground truth) and for the SHREC'19 pairs
@@ -183,6 +185,12 @@ std::vector<Configuration> configurations() {
   list.push_back({"Balanced", s});
   s.optimization.merge = true;
   list.push_back({"Balanced + merging", s});
+  PairSettings first_layout = s;
+  first_layout.retry_keeping_corners = false;
+  list.push_back({"Balanced + merging, first layout only", first_layout});
+  PairSettings corners_kept = s;
+  corners_kept.optimization.stretching.keep_corners = true;
+  list.push_back({"Balanced + merging, corners kept", corners_kept});
   s.cross_map.relax = false;
   list.push_back({"Balanced + merging, no relaxation", s});
   return list;

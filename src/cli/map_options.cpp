@@ -22,6 +22,9 @@ void add_optimization_options(CLI::App& command, DomainOptimizationSettings& opt
       "Merge triangle pairs into quads where it lowers the domain distortion (paper section 5; default on)");
   command.add_flag("!--no-stretch", optimization.stretch,
                    "Keep the initial layout curves instead of straightening them into geodesics first");
+  command.add_flag("--keep-corners", optimization.stretching.keep_corners,
+                   "Leave as traced the curves whose straightening collapses a patch corner on one mesh only "
+                   "(curves from a fingertip running side by side down the finger)");
 }
 
 void add_map_options(CLI::App& command, PairSettings& settings) {
@@ -30,6 +33,10 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "--relax,!--no-relax", settings.cross_map.relax,
       "Relax each patch's map on the target surface (symmetric Dirichlet energy, SLIM) so unanchored "
       "protrusions are not squeezed (the map stays a bijection; default on)");
+  command.add_flag(
+      "--second-layout,!--no-second-layout", settings.retry_keeping_corners,
+      "When the remesh still folds, build the base domain again with --keep-corners and keep the "
+      "map with fewer folds (default on)");
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");
@@ -38,6 +45,8 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
 nlohmann::json optimization_json(const DomainOptimizationResult& optimization) {
   return {{"metric", std::string(to_string(optimization.settings.metric))},
           {"stretch", optimization.settings.stretch},
+          {"keep_corners", optimization.settings.stretching.keep_corners},
+          {"unstretched_curves", optimization.unstretched_curves},
           {"merge", optimization.settings.merge},
           {"swaps", optimization.swaps},
           {"refused_swaps", optimization.refused_swaps},

@@ -11,12 +11,13 @@
 namespace xparam::cli {
 
 /// Add `--optimize METRIC` (none, ad, l2, area, dad, dl2, sdl, gar, balanced; default balanced),
-/// `--merge/--no-merge` (default merge) and `--no-stretch` to `command`, writing into
+/// `--merge/--no-merge` (default merge), `--no-stretch` and `--keep-corners` to `command`, writing into
 /// `settings`, which must outlive the parse (`xparam layout` takes just these).
 void add_optimization_options(CLI::App& command, DomainOptimizationSettings& settings);
 
-/// The optimization options and `--untangle/--no-untangle` (default untangle), writing into
-/// `settings`, which must outlive the parse.
+/// The optimization options, `--relax/--no-relax`, `--second-layout/--no-second-layout` and
+/// `--untangle/--no-untangle` (all default on), writing into `settings`, which must outlive the
+/// parse.
 void add_map_options(CLI::App& command, PairSettings& settings);
 
 /// What the base-domain optimization did, as metrics.json and layout.json report it.

@@ -338,7 +338,9 @@ DomainOptimizationResult optimize_base_domain(Layout& layout, const DomainOptimi
   const std::array<std::size_t, 2> vertices_before = {layout.sides[0].mesh.n_vertices(),
                                                       layout.sides[1].mesh.n_vertices()};
   Stopwatch watch;
-  if (settings.stretch) stretch_layout(layout, settings.stretching);
+  if (settings.stretch) {
+    result.unstretched_curves = static_cast<int>(stretch_layout(layout, settings.stretching).unstretched.size());
+  }
   result.seconds_stretch = watch.lap();
   if (settings.metric != SwapMetric::none) BoundarySwapper(layout, settings, result).run();
   result.seconds_swap = watch.lap();

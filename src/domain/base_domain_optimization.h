@@ -34,6 +34,9 @@ struct DomainOptimizationResult {
   /// Candidates skipped because the swap would give back a layout seen before (how the swap
   /// loop is bounded: no configuration twice, so it cannot cycle).
   int repeated_configurations = 0;
+  /// Curves stretching left as traced because straightening them collapsed a corner
+  /// (StretchSettings::keep_corners).
+  int unstretched_curves = 0;
   int merges = 0;                    ///< patch pairs merged into quads
   std::vector<int> merged_edges;     ///< the layout edges removed by merging, numbered as before merging
   double balanced_threshold = 0.0;   ///< balanced only: 2.0 + (1 - 0.618) max(E_DL2 - 2.0) (section 4.3)

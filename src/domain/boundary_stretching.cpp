@@ -2,10 +2,12 @@
 
 #include "core/errors.h"
 #include "core/provenance.h"
+#include "domain/patch_merging.h"
 #include "geodesic/locally_shortest.h"
 #include "layout/chain_edit.h"
 #include "layout/vertex_labels.h"
 
+#include <algorithm>
 #include <string>
 
 namespace xparam {
@@ -134,9 +136,53 @@ CurveStretch stretch_edge(Layout& layout, int e, const StretchSettings& settings
   return result;
 }
 
-StretchResult stretch_layout(Layout& layout, const StretchSettings& settings) {
+namespace {
+
+// Surface angle of every corner of every patch on each side (corner_surface_angles).
+using CornerAngles = std::array<std::vector<std::vector<double>>, 2>;
+
+CornerAngles corner_angles(const Layout& layout) {
+  CornerAngles angles;
+  for (int side = 0; side < 2; ++side) {
+    for (int p = 0; p < static_cast<int>(layout.patches.size()); ++p)
+      angles[side].push_back(corner_surface_angles(layout, side, p));
+  }
+  return angles;
+}
+
+bool collapsed(double a, double b, const StretchSettings& settings) {
+  const double smaller = std::min(a, b);
+  return smaller < settings.collapsed_angle && smaller < settings.collapsed_ratio * std::max(a, b);
+}
+
+// The layout edges of every corner collapsed in `after` but not in `before`, ascending. Corner
+// i of a patch lies between its halfedges i - 1 and i (domain/lpbd.h).
+std::vector<int> edges_of_collapsed_corners(const Layout& layout, const CornerAngles& before,
+                                            const CornerAngles& after, const StretchSettings& settings) {
+  std::vector<int> edges;
+  for (std::size_t p = 0; p < layout.patches.size(); ++p) {
+    const std::vector<int>& walk = layout.patches[p];
+    for (std::size_t i = 0; i < walk.size(); ++i) {
+      if (!collapsed(after[0][p][i], after[1][p][i], settings) ||
+          collapsed(before[0][p][i], before[1][p][i], settings))
+        continue;
+      edges.push_back(layout_edge_of(walk[i]));
+      edges.push_back(layout_edge_of(walk[(i + walk.size() - 1) % walk.size()]));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+StretchResult stretch_all_but(Layout& layout, const std::vector<bool>& left_out,
+                              const StretchSettings& settings) {
   StretchResult result;
   for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
+    if (left_out[e]) {
+      result.unstretched.push_back(e);
+      continue;
+    }
     result.curves.push_back(stretch_edge(layout, e, settings));
     for (int side = 0; side < 2; ++side) {
       result.vertices_added[side] += result.curves.back().vertices_added[side];
@@ -144,6 +190,29 @@ StretchResult stretch_layout(Layout& layout, const StretchSettings& settings) {
     }
   }
   return result;
+}
+
+}  // namespace
+
+StretchResult stretch_layout(Layout& layout, const StretchSettings& settings) {
+  std::vector<bool> left_out(layout.edges.size(), false);
+  if (!settings.keep_corners) return stretch_all_but(layout, left_out, settings);
+  if (settings.max_keep_passes < 1) throw InputError("stretch_layout: max_keep_passes must be at least 1");
+
+  const Layout traced = layout;
+  const CornerAngles before = corner_angles(layout);
+  for (int pass = 1;; ++pass) {
+    StretchResult result = stretch_all_but(layout, left_out, settings);
+    result.passes = pass;
+    if (pass == settings.max_keep_passes) return result;
+    bool more = false;
+    for (int e : edges_of_collapsed_corners(layout, before, corner_angles(layout), settings)) {
+      more = more || !left_out[e];
+      left_out[e] = true;
+    }
+    if (!more) return result;
+    layout = traced;
+  }
 }
 
 }  // namespace xparam

@@ -34,6 +34,19 @@ struct StretchSettings {
   /// Bound on the plan-and-clear rounds of one curve (each round clears every blocked vertex
   /// the planned curve touches; a vertex is never cleared twice).
   int max_clearance_rounds = 32;
+  /// Keep corners (stretch_layout): a curve whose straightening collapses a patch corner on one
+  /// side keeps its traced route. Off by default; map_pair turns it on when it builds a second
+  /// layout because the map on the first one folds (map/pair_mapping.h).
+  bool keep_corners = false;
+  /// A corner is collapsed when its surface angle is below this on one side (radians, 10 deg)
+  /// ...
+  double collapsed_angle = 0.17453292519943295;
+  /// ... and below this fraction of the same corner's angle on the other side, and it was not
+  /// both before stretching.
+  double collapsed_ratio = 0.25;
+  /// Bound on the stretching passes with keep_corners (each pass starts again from the traced
+  /// layout and leaves out the curves of every corner the passes so far collapsed).
+  int max_keep_passes = 4;
 };
 
 /// What stretching one layout curve did, per side (0: template, 1: target).
@@ -57,9 +70,13 @@ struct CurveStretch {
 
 /// What stretch_layout did.
 struct StretchResult {
-  std::vector<CurveStretch> curves;     ///< one per layout edge, in edge order
+  std::vector<CurveStretch> curves;     ///< one per stretched layout edge, in edge order
   std::array<int, 2> vertices_added{};  ///< sum over curves, per side
   std::array<int, 2> kept{};            ///< curves per side left as they were (CurveStretch::kept)
+  /// keep_corners: the layout edges left as traced because straightening them collapsed a
+  /// corner, ascending.
+  std::vector<int> unstretched;
+  int passes = 1;  ///< stretching passes (more than one only with keep_corners)
 };
 
 /// Stretch layout edge `e` on both sides: straighten its chain inside the union of its two
@@ -75,6 +92,16 @@ CurveStretch stretch_edge(Layout& layout, int e, const StretchSettings& settings
 /// Stretch every layout edge once, in edge order (deterministic). A curve stretched early stays
 /// locally shortest when its neighbours move later (their moves never touch its vertices'
 /// fans), except that a vertex it was kept off may become free.
+///
+/// With keep_corners, the corners' surface angles (corner_surface_angles of
+/// domain/patch_merging.h) are compared after stretching: geodesics from an anchor at the tip
+/// of a protrusion (a fingertip) may run side by side down it on one mesh and spread on the
+/// other, where the protrusion is shorter or fused, and the map between the two corners must
+/// then open an angle of a few degrees to tens, which folds the remesh near the anchor. The two
+/// curves of every corner that stretching collapsed (StretchSettings::collapsed_angle and
+/// collapsed_ratio) are left out, and the layout is stretched again from the traced one, until
+/// no new corner collapses or max_keep_passes passes ran.
+/// \pre with keep_corners, layout.patches are set (the corners are those of the patches)
 StretchResult stretch_layout(Layout& layout, const StretchSettings& settings = {});
 
 }  // namespace xparam

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <optional>
 
 namespace xparam {
@@ -88,51 +89,50 @@ std::vector<int> patches_of_folds(const std::vector<std::array<int, 3>>& faces,
   return patches;
 }
 
-}  // namespace
+// A base domain and the map on it: the layout, its cross map and the template's images after
+// the undo rounds. Heap-held: `cross` points into `layout`.
+struct MapAttempt {
+  ConsistentLayoutResult layout;
+  DomainOptimizationResult optimization;
+  std::unique_ptr<CrossMap> cross;
+  ComposedImages composed;
 
-PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
-                     const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
-                     const PairSettings& settings, const StageCallback& on_stage) {
-  auto stage = [&](const char* name) {
-    if (on_stage) on_stage(name);
-  };
-  PairMapping result;
-  result.settings = settings;
-  Stopwatch total;
+  int folds() const { return composed.untangled.flipped_after; }
+};
+
+std::unique_ptr<MapAttempt> attempt_map(const Mesh& source, const Mesh& target,
+                                        const std::array<PlacedAnchors, 2>& anchors,
+                                        const std::array<const Mesh*, 2>& refined,
+                                        const DomainOptimizationSettings& optimization,
+                                        const PairSettings& settings, PairSeconds& seconds,
+                                        const std::function<void(const char*)>& stage) {
+  auto attempt = std::make_unique<MapAttempt>();
   Stopwatch watch;
-
-  stage("anchors");
-  const AnchorSet matched = match_anchors(source_anchors, target_anchors);
-  Mesh source_refined = source;
-  Mesh target_refined = target;
-  result.anchors[0] = place_anchors(source_refined, source, source_anchors, settings.placement);
-  result.anchors[1] = place_anchors(target_refined, target, matched, settings.placement);
-  result.seconds.anchors = watch.lap();
-
   stage("layout");
-  result.layout = build_consistent_layout(source_refined, anchor_vertices(result.anchors[0]), target_refined,
-                                          anchor_vertices(result.anchors[1]), settings.layout);
-  result.seconds.layout = watch.lap();
+  attempt->layout = build_consistent_layout(*refined[0], anchor_vertices(anchors[0]), *refined[1],
+                                            anchor_vertices(anchors[1]), settings.layout);
+  seconds.layout += watch.lap();
 
   stage("optimize");
-  result.optimization = optimize_base_domain(result.layout.layout, settings.optimization);
-  const Layout& layout = result.layout.layout;
-  result.seconds.optimize = watch.lap();
+  attempt->optimization = optimize_base_domain(attempt->layout.layout, optimization);
+  const Layout& layout = attempt->layout.layout;
+  seconds.optimize += watch.lap();
 
   stage("parameterize");
-  CrossMap cross(layout, {&source, &target}, settings.cross_map);
-  result.seconds.relax = cross.relaxation().seconds;
-  result.fallback_polygons = cross.fallback_polygons();
-  result.inverted_triangles = cross.inverted_triangles();
-  result.seconds.parameterize = watch.lap();
+  attempt->cross =
+      std::make_unique<CrossMap>(layout, std::array<const Mesh*, 2>{&source, &target}, settings.cross_map);
+  CrossMap& cross = *attempt->cross;
+  seconds.relax += cross.relaxation().seconds;
+  seconds.parameterize += watch.lap();
 
   stage("compose");
   // Refinement only appends vertices, so template input vertex i is refined vertex i.
   XP_ASSERT(layout.sides[0].mesh.n_vertices() >= source.n_vertices());
   std::vector<SurfacePoint> anchor_points;
-  for (const PlacedAnchor& anchor : result.anchors[0].anchors) anchor_points.push_back(anchor.input_point);
+  for (const PlacedAnchor& anchor : anchors[0].anchors) anchor_points.push_back(anchor.input_point);
   const std::vector<std::array<int, 3>> faces = triangles_of(source);
-  ComposedImages composed = compose_images(cross, source, target, anchor_points, settings);
+  ComposedImages& composed = attempt->composed;
+  composed = compose_images(cross, source, target, anchor_points, settings);
   // Relaxing can leave a fold in a strongly curved spot (a heel, a hoof) that the untangling
   // cannot remove; those patches go back to Gamma_st . Gamma_s (then, if asked again, to their
   // mean-value parameterizations) and everything is composed again (a few rounds: the new
@@ -155,8 +155,57 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     }
   }
   if (later) cross.restore(*best_state);
+  seconds.untangle += composed.untangle_seconds;
+  seconds.compose += watch.lap();
+  return attempt;
+}
+
+}  // namespace
+
+PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
+                     const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
+                     const PairSettings& settings, const StageCallback& on_stage) {
+  const auto stage = [&](const char* name) {
+    if (on_stage) on_stage(name);
+  };
+  PairMapping result;
+  result.settings = settings;
+  Stopwatch total;
+  Stopwatch watch;
+
+  stage("anchors");
+  const AnchorSet matched = match_anchors(source_anchors, target_anchors);
+  Mesh source_refined = source;
+  Mesh target_refined = target;
+  result.anchors[0] = place_anchors(source_refined, source, source_anchors, settings.placement);
+  result.anchors[1] = place_anchors(target_refined, target, matched, settings.placement);
+  result.seconds.anchors = watch.lap();
+
+  const std::array<const Mesh*, 2> refined = {&source_refined, &target_refined};
+  std::unique_ptr<MapAttempt> attempt = attempt_map(source, target, result.anchors, refined,
+                                                    settings.optimization, settings, result.seconds, stage);
+  // Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
+  // and spread on the other; the map then folds near the anchor. When folds remain, a second
+  // layout keeps such corners open (StretchSettings::keep_corners) and the map with fewer folds
+  // is kept, the first on a tie.
+  const DomainOptimizationSettings& first = settings.optimization;
+  if (attempt->folds() > 0 && settings.retry_keeping_corners && first.stretch &&
+      !first.stretching.keep_corners) {
+    DomainOptimizationSettings keeping = first;
+    keeping.stretching.keep_corners = true;
+    std::unique_ptr<MapAttempt> retry =
+        attempt_map(source, target, result.anchors, refined, keeping, settings, result.seconds, stage);
+    if (retry->folds() < attempt->folds()) attempt = std::move(retry);
+  }
+  watch.lap();
+  const CrossMap& cross = *attempt->cross;
+  const ComposedImages& composed = attempt->composed;
+  result.fallback_polygons = cross.fallback_polygons();
+  result.inverted_triangles = cross.inverted_triangles();
+  result.optimization = attempt->optimization;
+  const std::vector<std::array<int, 3>> faces = triangles_of(source);
   result.relaxation = cross.relaxation();
-  std::vector<MappedPoint>& images = composed.untangled.images;
+  const std::vector<MappedPoint>& images = composed.untangled.images;
   const TemplateWarp& warp = composed.untangled.warp;
   if (settings.untangle) {
     const UntangleResult& untangled = composed.untangled;
@@ -166,9 +215,9 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
                          untangled.mean_move,
                          static_cast<int>(warp.moves.size()),
                          untangled.rounds};
-    result.seconds.untangle = composed.untangle_seconds;
   }
   const int n_vertices = static_cast<int>(source.n_vertices());
+  const Layout& layout = attempt->layout.layout;
   result.correspondence.resize(n_vertices);
   result.remesh_vertices.resize(n_vertices, 3);
   for (int v = 0; v < n_vertices; ++v) {
@@ -189,7 +238,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     }
     result.curves.push_back(std::move(mapped));
   }
-  result.seconds.compose = watch.lap();
+  result.seconds.compose += watch.lap();
 
   stage("metrics");
   std::vector<Eigen::Vector3d> source_positions(n_vertices);
@@ -200,6 +249,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   }
   result.distortion = measure_distortion(source_positions, image_positions, faces);
   result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
+  result.layout = std::move(attempt->layout);  // the cross map is not used past here
   result.seconds.metrics = watch.lap();
   result.seconds.total = total.lap();
   return result;

@@ -33,6 +33,9 @@ struct PairSettings {
   DomainOptimizationSettings
       optimization;            ///< stretching, swapping, merging (domain/base_domain_optimization.h)
   CrossMapSettings cross_map;  ///< the patch maps' relaxation (map/cross_map.h)
+  /// When the remesh still folds, build the base domain again with corners kept open
+  /// (StretchSettings::keep_corners) and keep the map with fewer folds.
+  bool retry_keeping_corners = true;
   /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
   bool untangle = true;
   UntangleSettings untangling;  ///< options of that step

@@ -1,10 +1,11 @@
 // Boundary stretching on consistent layouts of the bundled meshes: the stretched layout passes
 // the checker, every curve is locally shortest in its two-patch region except exactly where it
 // was kept off another curve, no curve gets longer, refinement stays bounded, and the result
-// is deterministic.
+// is deterministic. Keeping corners leaves no corner collapsed that was open before.
 #include "domain/boundary_stretching.h"
 
 #include "core/errors.h"
+#include "domain/patch_merging.h"
 #include "geodesic/locally_shortest.h"
 #include "layout/chain_edit.h"
 #include "layout/consistent_layout.h"
@@ -196,6 +197,63 @@ TEST(BoundaryStretching, StretchingTwiceChangesAlmostNothing) {
     }
   }
   test::expect_consistent(layout, "spot stretched twice");
+}
+
+// Corners (patch, corner index) whose surface angle is collapsed on one side (StretchSettings:
+// below collapsed_angle and below collapsed_ratio times the other side's) in `after` but not in
+// `before` (the same layout before stretching).
+std::vector<std::pair<int, int>> newly_collapsed(const Layout& before, const Layout& after,
+                                                 const StretchSettings& settings) {
+  const auto collapsed = [&](const Layout& layout, int p, int i) {
+    const double a = corner_surface_angles(layout, 0, p)[i];
+    const double b = corner_surface_angles(layout, 1, p)[i];
+    return std::min(a, b) < settings.collapsed_angle &&
+           std::min(a, b) < settings.collapsed_ratio * std::max(a, b);
+  };
+  std::vector<std::pair<int, int>> corners;
+  for (int p = 0; p < static_cast<int>(after.patches.size()); ++p) {
+    for (int i = 0; i < static_cast<int>(after.patches[p].size()); ++i) {
+      if (collapsed(after, p, i) && !collapsed(before, p, i)) corners.emplace_back(p, i);
+    }
+  }
+  return corners;
+}
+
+// Plain stretching collapses corners of the bundled layouts under settings wider than the
+// defaults (a corner below 0.5 rad and half the other side's; the defaults are for fingertips
+// on real scans, tests/map/real_pairs_test.cpp); keeping
+// corners leaves none collapsed that was open, leaves out exactly the curves it reports (their
+// chains are the traced ones) and stays consistent and deterministic.
+void expect_corners_kept(const Layout& traced, const std::string& what) {
+  StretchSettings settings;
+  settings.collapsed_angle = 0.5;
+  settings.collapsed_ratio = 0.5;
+  settings.max_keep_passes = 8;
+  Layout plain = traced;
+  stretch_layout(plain, settings);
+  EXPECT_GE(newly_collapsed(traced, plain, settings).size(), 1u)
+      << what << ": nothing for keep_corners to do";
+
+  settings.keep_corners = true;
+  Layout kept = traced;
+  const StretchResult result = stretch_layout(kept, settings);
+  ASSERT_LT(result.passes, settings.max_keep_passes) << what;
+  EXPECT_TRUE(newly_collapsed(traced, kept, settings).empty()) << what;
+  EXPECT_GE(result.unstretched.size(), 1u) << what;
+  EXPECT_EQ(result.curves.size() + result.unstretched.size(), traced.edges.size()) << what;
+  for (int e : result.unstretched) {
+    for (int side = 0; side < 2; ++side)
+      EXPECT_EQ(kept.sides[side].chains[e], traced.sides[side].chains[e]) << what;
+  }
+  test::expect_consistent(kept, what + " stretched keeping corners");
+  Layout again = traced;
+  EXPECT_EQ(stretch_layout(again, settings).unstretched, result.unstretched) << what;
+  EXPECT_EQ(again.sides[1].chains, kept.sides[1].chains) << what;
+}
+
+TEST(BoundaryStretching, KeepingCornersLeavesNoCornerCollapsed) {
+  expect_corners_kept(human_layout(), "human pair");
+  expect_corners_kept(spot_layout(), "spot pair");
 }
 
 TEST(BoundaryStretching, RejectsBadSettingsAndEdges) {
