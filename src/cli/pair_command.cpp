@@ -51,8 +51,12 @@ void run_pair(const PairOptions& options) {
   }
   std::cout << "swaps " << mapping.optimization.swaps << "  merges " << mapping.optimization.merges << "  E_L2 "
             << mapping.distortion.all.e_l2 << "  E_ang " << mapping.distortion.all.e_ang
-            << "  flipped faces " << mapping.quality.flipped_faces.size() << "  area ratio "
-            << mapping.quality.area_ratio << "  (" << mapping.seconds.total << " s)\n"
+            << "  flipped faces " << mapping.quality.flipped_faces.size();
+  if (!mapping.folds_by_anchor.empty()) {
+    const AnchorFolds& most = mapping.folds_by_anchor.front();
+    std::cout << " (" << most.folded_faces << " nearest \"" << most.anchor << "\")";
+  }
+  std::cout << "  area ratio " << mapping.quality.area_ratio << "  (" << mapping.seconds.total << " s)\n"
             << "results in " << options.out << "\n";
 }
 

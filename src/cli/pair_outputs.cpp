@@ -31,6 +31,9 @@ std::vector<Eigen::Vector3d> rows(const Eigen::MatrixX3d& matrix, int n) {
   return result;
 }
 
+// Folded faces stand out in magenta among the stretch colours.
+constexpr std::array<std::uint8_t, 3> kFlippedColor = {255, 0, 255};
+
 // Blue at stretch 1 (isometric), through green, to red at stretch 2 and above.
 std::array<std::uint8_t, 3> stretch_color(double stretch) {
   const double t = std::isfinite(stretch) ? std::clamp(stretch - 1.0, 0.0, 1.0) : 1.0;
@@ -60,6 +63,13 @@ nlohmann::json number(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json();
 }
 
+nlohmann::json folds_json(const std::vector<AnchorFolds>& folds) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const AnchorFolds& near : folds)
+    list.push_back({{"anchor", near.anchor}, {"folded_faces", near.folded_faces}});
+  return list;
+}
+
 nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping) {
   const Layout& layout = mapping.layout.layout;
   nlohmann::json metrics = {
@@ -70,6 +80,8 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
       {"stretch_max_sv", number(mapping.distortion.all.stretch_max_sv)},
       {"degenerate_faces", mapping.distortion.degenerate_faces},
       {"flipped_faces", mapping.quality.flipped_faces.size()},
+      {"flipped_face_ids", mapping.quality.flipped_faces},
+      {"folds_by_anchor", folds_json(mapping.folds_by_anchor)},
       {"area_ratio", number(mapping.quality.area_ratio)},
       {"anchors", layout.n_anchors},
       {"layout_edges", layout.edges.size()},
@@ -144,8 +156,13 @@ void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& sour
   attributes.face_doubles.push_back({"l2_stretch", mapping.distortion.face_l2_stretch});
   attributes.face_doubles.push_back({"angle_distortion", mapping.distortion.face_angle_distortion});
   attributes.face_ints.push_back({"patch", mapping.face_patch});
-  for (double stretch : mapping.distortion.face_l2_stretch)
-    attributes.face_colors.push_back(stretch_color(stretch));
+  std::vector<int> flipped(faces.size(), 0);
+  for (int f : mapping.quality.flipped_faces) flipped[f] = 1;
+  attributes.face_ints.push_back({"flipped", flipped});
+  for (size_t f = 0; f < faces.size(); ++f) {
+    attributes.face_colors.push_back(flipped[f] ? kFlippedColor
+                                                : stretch_color(mapping.distortion.face_l2_stretch[f]));
+  }
   write_ply(dir / "stretch.ply", remesh, faces, attributes);
 
   if (!mapping.curves.empty()) {

@@ -185,11 +185,11 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   std::unique_ptr<MapAttempt> attempt = attempt_map(source, target, result.anchors, refined,
                                                     settings.optimization, settings, result.seconds, stage);
   // Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
-  // and spread on the other; the map then folds near the anchor. When folds remain, a second
-  // layout keeps such corners open (StretchSettings::keep_corners) and the map with fewer folds
-  // is kept, the first on a tie.
+  // and spread on the other; the map then folds near the anchor. When folds remain after
+  // untangling (without it, Gamma's own folds are asked for), a second layout keeps such corners
+  // open (StretchSettings::keep_corners) and the map with fewer folds is kept, the first on a tie.
   const DomainOptimizationSettings& first = settings.optimization;
-  if (attempt->folds() > 0 && settings.retry_keeping_corners && first.stretch &&
+  if (attempt->folds() > 0 && settings.retry_keeping_corners && settings.untangle && first.stretch &&
       !first.stretching.keep_corners) {
     DomainOptimizationSettings keeping = first;
     keeping.stretching.keep_corners = true;
@@ -249,6 +249,10 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   }
   result.distortion = measure_distortion(source_positions, image_positions, faces);
   result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
+  std::vector<std::string> anchor_names;
+  for (const PlacedAnchor& anchor : result.anchors[0].anchors) anchor_names.push_back(anchor.name);
+  result.folds_by_anchor = folds_by_anchor(layout.sides[0].mesh, layout.sides[0].anchor_vertices,
+                                           anchor_names, faces, result.quality.flipped_faces);
   result.layout = std::move(attempt->layout);  // the cross map is not used past here
   result.seconds.metrics = watch.lap();
   result.seconds.total = total.lap();

@@ -13,6 +13,7 @@
 #include "domain/base_domain_optimization.h"
 #include "layout/consistent_layout.h"
 #include "map/cross_map.h"
+#include "map/fold_report.h"
 #include "map/remesh_quality.h"
 #include "map/remesh_untangling.h"
 #include "param/distortion.h"
@@ -33,8 +34,9 @@ struct PairSettings {
   DomainOptimizationSettings
       optimization;            ///< stretching, swapping, merging (domain/base_domain_optimization.h)
   CrossMapSettings cross_map;  ///< the patch maps' relaxation (map/cross_map.h)
-  /// When the remesh still folds, build the base domain again with corners kept open
-  /// (StretchSettings::keep_corners) and keep the map with fewer folds.
+  /// When the remesh still folds after untangling, build the base domain again with corners kept
+  /// open (StretchSettings::keep_corners) and keep the map with fewer folds (never without
+  /// untangling: then Gamma's own folds are asked for).
   bool retry_keeping_corners = true;
   /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
   bool untangle = true;
@@ -83,6 +85,8 @@ struct PairMapping {
   std::vector<int> face_patch;       ///< #template input faces: layout patch holding most of the face's area
   DistortionResult distortion;       ///< per face and global L2-stretch and angle distortion (eq. 3, 5, 6)
   RemeshQualityResult quality;       ///< flipped faces and area ratio of the remesh on the target
+  /// The flipped faces by nearest template anchor (map/fold_report.h).
+  std::vector<AnchorFolds> folds_by_anchor;
   RelaxationSummary relaxation;      ///< how much relaxing the patch maps lowered their energy
   UntangleSummary untangling;        ///< how far the remesh's vertices were slid to unfold it
   std::vector<MappedCurve> curves;   ///< the template's feature curves on the target, in input order

@@ -1,7 +1,8 @@
 // `xparam pair` end to end on the bundled man -> woman pair: the written files agree with each
 // other (remesh vertex i is correspondence row i evaluated on the target file), the remesh has
-// the template's faces, metrics.json reports the untangling, `--no-untangle` leaves the folds,
-// and a failing pair exits 3 without writing results.
+// the template's faces, metrics.json reports the untangling, `--no-untangle` leaves the folds
+// (listed, credited to anchors, marked in stretch.ply), and a failing pair exits 3 without
+// writing results.
 #include "support/plain_obj.h"
 #include "support/test_data.h"
 
@@ -135,6 +136,16 @@ TEST(PairCommand, NoUntangleLeavesTheFoldsOfGamma) {
   EXPECT_EQ(tangled["untangling"]["enabled"], false);
   EXPECT_EQ(tangled["untangling"]["moved_vertices"], 0);
   EXPECT_EQ(tangled["flipped_faces"], untangled["untangling"]["flipped_before"]);
+  // Where the folds are: listed, and each credited to one anchor.
+  ASSERT_GE(tangled["flipped_faces"].get<int>(), 1);
+  EXPECT_EQ(tangled["flipped_face_ids"].size(), tangled["flipped_faces"].get<std::size_t>());
+  int credited = 0;
+  for (const nlohmann::json& near : tangled["folds_by_anchor"]) credited += near["folded_faces"].get<int>();
+  EXPECT_EQ(credited, tangled["flipped_faces"].get<int>());
+  std::ifstream ply(dir / "out" / "stretch.ply", std::ios::binary);
+  std::string header;
+  for (std::string line; std::getline(ply, line) && line != "end_header";) header += line + "\n";
+  EXPECT_NE(header.find("property int flipped"), std::string::npos) << header;
 }
 
 TEST(PairCommand, AFailingStageExitsThreeAndWritesNoResults) {
