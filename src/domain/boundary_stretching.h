@@ -38,12 +38,11 @@ struct StretchSettings {
   /// side keeps its traced route. Off by default; map_pair turns it on when it builds a second
   /// layout because the map on the first one folds (map/pair_mapping.h).
   bool keep_corners = false;
-  /// A corner is collapsed when its surface angle is below this on one side (radians, 10 deg)
-  /// ...
+  /// A corner is collapsed when its surface angle on one side is below collapsed_angle (radians,
+  /// 10 degrees) and below collapsed_ratio times the same corner's angle on the other side;
+  /// stretching collapsed it when it was not so before.
   double collapsed_angle = 0.17453292519943295;
-  /// ... and below this fraction of the same corner's angle on the other side, and it was not
-  /// both before stretching.
-  double collapsed_ratio = 0.25;
+  double collapsed_ratio = 0.25;  ///< see collapsed_angle
   /// Bound on the stretching passes with keep_corners (each pass starts again from the traced
   /// layout and leaves out the curves of every corner the passes so far collapsed).
   int max_keep_passes = 4;
@@ -102,6 +101,7 @@ CurveStretch stretch_edge(Layout& layout, int e, const StretchSettings& settings
 /// collapsed_ratio) are left out, and the layout is stretched again from the traced one, until
 /// no new corner collapses or max_keep_passes passes ran.
 /// \pre with keep_corners, layout.patches are set (the corners are those of the patches)
+/// \throw InputError with keep_corners and max_keep_passes below 1
 StretchResult stretch_layout(Layout& layout, const StretchSettings& settings = {});
 
 }  // namespace xparam

@@ -265,6 +265,10 @@ TEST(BoundaryStretching, RejectsBadSettingsAndEdges) {
   EXPECT_THROW(stretch_edge(layout, 0, settings), InputError);
   EXPECT_THROW(stretch_edge(layout, -1), LayoutError);
   EXPECT_THROW(stretch_edge(layout, static_cast<int>(layout.edges.size())), LayoutError);
+  StretchSettings no_pass;
+  no_pass.keep_corners = true;
+  no_pass.max_keep_passes = 0;
+  EXPECT_THROW(stretch_layout(layout, no_pass), InputError);
   EXPECT_EQ(layout.sides[0].mesh.n_vertices(), spot_layout().sides[0].mesh.n_vertices());
 }
 
