@@ -35,8 +35,8 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "protrusions are not squeezed (the map stays a bijection; default on)");
   command.add_flag(
       "--second-layout,!--no-second-layout", settings.retry_keeping_corners,
-      "When the remesh still folds, build the base domain again with --keep-corners and keep the "
-      "map with fewer folds (default on)");
+      "When the remesh still folds, build the base domain again with corners kept (as --keep-corners) "
+      "at the anchors near the folds, and keep the map with fewer folds (default on)");
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");

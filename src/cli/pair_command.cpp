@@ -54,7 +54,7 @@ void run_pair(const PairOptions& options) {
             << "  flipped faces " << mapping.quality.flipped_faces.size();
   if (!mapping.folds_by_anchor.empty()) {
     const AnchorFolds& most = mapping.folds_by_anchor.front();
-    std::cout << " (" << most.folded_faces << " nearest \"" << most.anchor << "\")";
+    std::cout << " (" << most.folded_faces << " nearest \"" << most.name << "\")";
   }
   std::cout << "  area ratio " << mapping.quality.area_ratio << "  (" << mapping.seconds.total << " s)\n"
             << "results in " << options.out << "\n";

@@ -66,7 +66,7 @@ nlohmann::json number(double value) {
 nlohmann::json folds_json(const std::vector<AnchorFolds>& folds) {
   nlohmann::json list = nlohmann::json::array();
   for (const AnchorFolds& near : folds)
-    list.push_back({{"anchor", near.anchor}, {"folded_faces", near.folded_faces}});
+    list.push_back({{"anchor", near.name}, {"folded_faces", near.folded_faces}});
   return list;
 }
 

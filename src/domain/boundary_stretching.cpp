@@ -155,14 +155,17 @@ bool collapsed(double a, double b, const StretchSettings& settings) {
   return smaller < settings.collapsed_angle && smaller < settings.collapsed_ratio * std::max(a, b);
 }
 
-// The layout edges of every corner collapsed in `after` but not in `before`, ascending. Corner
-// i of a patch lies between its halfedges i - 1 and i (domain/lpbd.h).
+// The layout edges of every corner (at an anchor of keep_corners_at, when given) collapsed in
+// `after` but not in `before`, ascending. Corner i of a patch lies between its halfedges i - 1
+// and i (domain/lpbd.h).
 std::vector<int> edges_of_collapsed_corners(const Layout& layout, const CornerAngles& before,
                                             const CornerAngles& after, const StretchSettings& settings) {
   std::vector<int> edges;
   for (std::size_t p = 0; p < layout.patches.size(); ++p) {
     const std::vector<int>& walk = layout.patches[p];
     for (std::size_t i = 0; i < walk.size(); ++i) {
+      const std::vector<int>& at = settings.keep_corners_at;
+      if (!at.empty() && std::find(at.begin(), at.end(), layout_from(layout, walk[i])) == at.end()) continue;
       if (!collapsed(after[0][p][i], after[1][p][i], settings) ||
           collapsed(before[0][p][i], before[1][p][i], settings))
         continue;

@@ -35,9 +35,12 @@ struct StretchSettings {
   /// the planned curve touches; a vertex is never cleared twice).
   int max_clearance_rounds = 32;
   /// Keep corners (stretch_layout): a curve whose straightening collapses a patch corner on one
-  /// side keeps its traced route. Off by default; map_pair turns it on when it builds a second
-  /// layout because the map on the first one folds (map/pair_mapping.h).
+  /// side keeps its traced route. Off by default; map_pair turns it on, at the anchors near the
+  /// folds, when it builds a second layout because the map on the first one folds
+  /// (map/pair_mapping.h).
   bool keep_corners = false;
+  /// With keep_corners: only corners at these anchors are kept (layout anchor ids); empty: all.
+  std::vector<int> keep_corners_at;
   /// A corner is collapsed when its surface angle on one side is below collapsed_angle (radians,
   /// 10 degrees) and below collapsed_ratio times the same corner's angle on the other side;
   /// stretching collapsed it when it was not so before.

@@ -37,7 +37,7 @@ std::vector<AnchorFolds> folds_by_anchor(const Mesh& mesh, const std::vector<Ver
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return count[a] > count[b]; });
   std::vector<AnchorFolds> result;
   for (int k : order) {
-    if (count[k] > 0) result.push_back({names[k], count[k]});
+    if (count[k] > 0) result.push_back({k, names[k], count[k]});
   }
   return result;
 }

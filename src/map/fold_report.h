@@ -16,7 +16,8 @@ namespace xparam {
 
 /// The folded faces nearest to one anchor.
 struct AnchorFolds {
-  std::string anchor;    ///< the anchor's name
+  int anchor = -1;       ///< its index in `anchors`
+  std::string name;      ///< its name
   int folded_faces = 0;  ///< folded remesh faces nearest to it
 };
 

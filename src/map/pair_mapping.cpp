@@ -160,6 +160,33 @@ std::unique_ptr<MapAttempt> attempt_map(const Mesh& source, const Mesh& target,
   return attempt;
 }
 
+// The anchors nearest the attempt's folded faces (map/fold_report.h) and their neighbours in
+// its layout, ascending: the corners a second layout keeps open. The neighbours count because a
+// fold near an anchor may come from the corner at the other end of one of its curves (SHREC'19
+// 1: the folds are at the index knuckle, the collapsed corner at the fingertip).
+std::vector<int> anchors_near_folds(const MapAttempt& attempt, const Mesh& source, const Mesh& target,
+                                    const PlacedAnchors& anchors) {
+  const LayoutSide& side = attempt.layout.layout.sides[0];
+  const std::vector<std::array<int, 3>> faces = triangles_of(source);
+  std::vector<std::string> names;
+  for (const PlacedAnchor& anchor : anchors.anchors) names.push_back(anchor.name);
+  std::vector<bool> near(names.size(), false);
+  for (const AnchorFolds& folds : folds_by_anchor(
+           side.mesh, side.anchor_vertices, names, faces,
+           measure_remesh_quality(faces, attempt.composed.untangled.images, target).flipped_faces))
+    near[folds.anchor] = true;
+  std::vector<bool> kept = near;
+  for (const LayoutEdge& edge : attempt.layout.layout.edges) {
+    if (near[edge.anchors[0]]) kept[edge.anchors[1]] = true;
+    if (near[edge.anchors[1]]) kept[edge.anchors[0]] = true;
+  }
+  std::vector<int> result;
+  for (int k = 0; k < static_cast<int>(kept.size()); ++k) {
+    if (kept[k]) result.push_back(k);
+  }
+  return result;
+}
+
 }  // namespace
 
 PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
@@ -187,12 +214,14 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   // Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
   // and spread on the other; the map then folds near the anchor. When folds remain after
   // untangling (without it, Gamma's own folds are asked for), a second layout keeps such corners
-  // open (StretchSettings::keep_corners) and the map with fewer folds is kept, the first on a tie.
+  // open (StretchSettings::keep_corners) at the anchors near the folds, and the map with fewer
+  // folds is kept, the first on a tie.
   const DomainOptimizationSettings& first = settings.optimization;
   if (attempt->folds() > 0 && settings.retry_keeping_corners && settings.untangle && first.stretch &&
       !first.stretching.keep_corners) {
     DomainOptimizationSettings keeping = first;
     keeping.stretching.keep_corners = true;
+    keeping.stretching.keep_corners_at = anchors_near_folds(*attempt, source, target, result.anchors[0]);
     std::unique_ptr<MapAttempt> retry =
         attempt_map(source, target, result.anchors, refined, keeping, settings, result.seconds, stage);
     if (retry->folds() < attempt->folds()) attempt = std::move(retry);

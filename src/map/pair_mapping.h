@@ -35,8 +35,8 @@ struct PairSettings {
       optimization;            ///< stretching, swapping, merging (domain/base_domain_optimization.h)
   CrossMapSettings cross_map;  ///< the patch maps' relaxation (map/cross_map.h)
   /// When the remesh still folds after untangling, build the base domain again with corners kept
-  /// open (StretchSettings::keep_corners) and keep the map with fewer folds (never without
-  /// untangling: then Gamma's own folds are asked for).
+  /// open (StretchSettings::keep_corners) at the anchors near the folds and their neighbours, and
+  /// keep the map with fewer folds (never without untangling: then Gamma's own folds are asked for).
   bool retry_keeping_corners = true;
   /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
   bool untangle = true;

@@ -221,9 +221,9 @@ std::vector<std::pair<int, int>> newly_collapsed(const Layout& before, const Lay
 
 // Plain stretching collapses corners of the bundled layouts under settings wider than the
 // defaults (a corner below 0.5 rad and half the other side's; the defaults are for fingertips
-// on real scans, tests/map/real_pairs_test.cpp); keeping
-// corners leaves none collapsed that was open, leaves out exactly the curves it reports (their
-// chains are the traced ones) and stays consistent and deterministic.
+// on real scans, tests/map/real_pairs_test.cpp); keeping corners leaves none collapsed that was
+// open, leaves out exactly the curves it reports (their chains are the traced ones) and stays
+// consistent and deterministic; keeping them at one anchor leaves out only curves of that anchor.
 void expect_corners_kept(const Layout& traced, const std::string& what) {
   StretchSettings settings;
   settings.collapsed_angle = 0.5;
@@ -246,6 +246,24 @@ void expect_corners_kept(const Layout& traced, const std::string& what) {
       EXPECT_EQ(kept.sides[side].chains[e], traced.sides[side].chains[e]) << what;
   }
   test::expect_consistent(kept, what + " stretched keeping corners");
+
+  // Only at one anchor: the corner plain stretching collapsed there stays open, and every curve
+  // left out ends at that anchor.
+  const auto [patch, corner] = newly_collapsed(traced, plain, settings).front();
+  const int anchor = layout_from(traced, traced.patches[patch][corner]);
+  StretchSettings at_one = settings;
+  at_one.keep_corners_at = {anchor};
+  Layout kept_at_one = traced;
+  const StretchResult local = stretch_layout(kept_at_one, at_one);
+  EXPECT_GE(local.unstretched.size(), 1u) << what;
+  for (int e : local.unstretched) {
+    const std::array<int, 2>& ends = traced.edges[e].anchors;
+    EXPECT_TRUE(ends[0] == anchor || ends[1] == anchor) << what << ": edge " << e;
+  }
+  for (const auto& [p, i] : newly_collapsed(traced, kept_at_one, settings))
+    EXPECT_NE(layout_from(traced, traced.patches[p][i]), anchor) << what;
+  test::expect_consistent(kept_at_one, what + " stretched keeping one anchor's corners");
+
   Layout again = traced;
   EXPECT_EQ(stretch_layout(again, settings).unstretched, result.unstretched) << what;
   EXPECT_EQ(again.sides[1].chains, kept.sides[1].chains) << what;

@@ -54,9 +54,11 @@ TEST(FoldsByAnchor, FacesAroundAnAnchorGoToItMostFoldsFirst) {
   const std::vector<AnchorFolds> folds = folds_by_anchor(
       man.mesh, man.anchors, man.names, man.faces, sorted_union(man.faces_at(0, 2), man.faces_at(5, 3)));
   ASSERT_EQ(folds.size(), 2u);
-  EXPECT_EQ(folds[0].anchor, "a5");
+  EXPECT_EQ(folds[0].anchor, 5);
+  EXPECT_EQ(folds[0].name, "a5");
   EXPECT_EQ(folds[0].folded_faces, 3);
-  EXPECT_EQ(folds[1].anchor, "a0");
+  EXPECT_EQ(folds[1].anchor, 0);
+  EXPECT_EQ(folds[1].name, "a0");
   EXPECT_EQ(folds[1].folded_faces, 2);
 }
 
@@ -65,8 +67,8 @@ TEST(FoldsByAnchor, TiesKeepTheAnchorOrderAndNoFoldGivesNothing) {
   const std::vector<AnchorFolds> folds = folds_by_anchor(
       man.mesh, man.anchors, man.names, man.faces, sorted_union(man.faces_at(5, 2), man.faces_at(3, 2)));
   ASSERT_EQ(folds.size(), 2u);
-  EXPECT_EQ(folds[0].anchor, "a3");
-  EXPECT_EQ(folds[1].anchor, "a5");
+  EXPECT_EQ(folds[0].name, "a3");
+  EXPECT_EQ(folds[1].name, "a5");
   EXPECT_TRUE(folds_by_anchor(man.mesh, man.anchors, man.names, man.faces, {}).empty());
 }
 
