@@ -90,9 +90,10 @@ std::vector<int> patches_of_folds(const std::vector<std::array<int, 3>>& faces,
 }
 
 // A base domain and the map on it: the layout, its cross map and the template's images after
-// the undo rounds. Heap-held: `cross` points into `layout`.
+// the undo rounds. The layout lives with the caller (`cross` points into it, and OpenMesh meshes
+// are copied, not moved, so it is built where it stays).
 struct MapAttempt {
-  ConsistentLayoutResult layout;
+  ConsistentLayoutResult* layout = nullptr;
   DomainOptimizationResult optimization;
   std::unique_ptr<CrossMap> cross;
   ComposedImages composed;
@@ -100,28 +101,27 @@ struct MapAttempt {
   int folds() const { return composed.untangled.flipped_after; }
 };
 
-std::unique_ptr<MapAttempt> attempt_map(const Mesh& source, const Mesh& target,
-                                        const std::array<PlacedAnchors, 2>& anchors,
-                                        const std::array<const Mesh*, 2>& refined,
-                                        const DomainOptimizationSettings& optimization,
-                                        const PairSettings& settings, PairSeconds& seconds,
-                                        const std::function<void(const char*)>& stage) {
-  auto attempt = std::make_unique<MapAttempt>();
+MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& source, const Mesh& target,
+                       const std::array<PlacedAnchors, 2>& anchors, const std::array<const Mesh*, 2>& refined,
+                       const DomainOptimizationSettings& optimization, const PairSettings& settings,
+                       PairSeconds& seconds, const std::function<void(const char*)>& stage) {
+  MapAttempt attempt;
+  attempt.layout = &layout_storage;
   Stopwatch watch;
   stage("layout");
-  attempt->layout = build_consistent_layout(*refined[0], anchor_vertices(anchors[0]), *refined[1],
-                                            anchor_vertices(anchors[1]), settings.layout);
+  layout_storage = build_consistent_layout(*refined[0], anchor_vertices(anchors[0]), *refined[1],
+                                           anchor_vertices(anchors[1]), settings.layout);
   seconds.layout += watch.lap();
 
   stage("optimize");
-  attempt->optimization = optimize_base_domain(attempt->layout.layout, optimization);
-  const Layout& layout = attempt->layout.layout;
+  attempt.optimization = optimize_base_domain(layout_storage.layout, optimization);
+  const Layout& layout = layout_storage.layout;
   seconds.optimize += watch.lap();
 
   stage("parameterize");
-  attempt->cross =
+  attempt.cross =
       std::make_unique<CrossMap>(layout, std::array<const Mesh*, 2>{&source, &target}, settings.cross_map);
-  CrossMap& cross = *attempt->cross;
+  CrossMap& cross = *attempt.cross;
   seconds.relax += cross.relaxation().seconds;
   seconds.parameterize += watch.lap();
 
@@ -131,7 +131,7 @@ std::unique_ptr<MapAttempt> attempt_map(const Mesh& source, const Mesh& target,
   std::vector<SurfacePoint> anchor_points;
   for (const PlacedAnchor& anchor : anchors[0].anchors) anchor_points.push_back(anchor.input_point);
   const std::vector<std::array<int, 3>> faces = triangles_of(source);
-  ComposedImages& composed = attempt->composed;
+  ComposedImages& composed = attempt.composed;
   composed = compose_images(cross, source, target, anchor_points, settings);
   // Relaxing can leave a fold in a strongly curved spot (a heel, a hoof) that the untangling
   // cannot remove; those patches go back to Gamma_st . Gamma_s (then, if asked again, to their
@@ -166,7 +166,7 @@ std::unique_ptr<MapAttempt> attempt_map(const Mesh& source, const Mesh& target,
 // 1: the folds are at the index knuckle, the collapsed corner at the fingertip).
 std::vector<int> anchors_near_folds(const MapAttempt& attempt, const Mesh& source, const Mesh& target,
                                     const PlacedAnchors& anchors) {
-  const LayoutSide& side = attempt.layout.layout.sides[0];
+  const LayoutSide& side = attempt.layout->layout.sides[0];
   const std::vector<std::array<int, 3>> faces = triangles_of(source);
   std::vector<std::string> names;
   for (const PlacedAnchor& anchor : anchors.anchors) names.push_back(anchor.name);
@@ -176,7 +176,7 @@ std::vector<int> anchors_near_folds(const MapAttempt& attempt, const Mesh& sourc
            measure_remesh_quality(faces, attempt.composed.untangled.images, target).flipped_faces))
     near[folds.anchor] = true;
   std::vector<bool> kept = near;
-  for (const LayoutEdge& edge : attempt.layout.layout.edges) {
+  for (const LayoutEdge& edge : attempt.layout->layout.edges) {
     if (near[edge.anchors[0]]) kept[edge.anchors[1]] = true;
     if (near[edge.anchors[1]]) kept[edge.anchors[0]] = true;
   }
@@ -209,29 +209,30 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   result.seconds.anchors = watch.lap();
 
   const std::array<const Mesh*, 2> refined = {&source_refined, &target_refined};
-  std::unique_ptr<MapAttempt> attempt = attempt_map(source, target, result.anchors, refined,
-                                                    settings.optimization, settings, result.seconds, stage);
+  MapAttempt attempt = attempt_map(result.layout, source, target, result.anchors, refined,
+                                   settings.optimization, settings, result.seconds, stage);
+  ConsistentLayoutResult second_layout;  // the second attempt's, when there is one
   // Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
   // and spread on the other; the map then folds near the anchor. When folds remain after
   // untangling (without it, Gamma's own folds are asked for), a second layout keeps such corners
   // open (StretchSettings::keep_corners) at the anchors near the folds, and the map with fewer
   // folds is kept, the first on a tie.
   const DomainOptimizationSettings& first = settings.optimization;
-  if (attempt->folds() > 0 && settings.retry_keeping_corners && settings.untangle && first.stretch &&
+  if (attempt.folds() > 0 && settings.retry_keeping_corners && settings.untangle && first.stretch &&
       !first.stretching.keep_corners) {
     DomainOptimizationSettings keeping = first;
     keeping.stretching.keep_corners = true;
-    keeping.stretching.keep_corners_at = anchors_near_folds(*attempt, source, target, result.anchors[0]);
-    std::unique_ptr<MapAttempt> retry =
-        attempt_map(source, target, result.anchors, refined, keeping, settings, result.seconds, stage);
-    if (retry->folds() < attempt->folds()) attempt = std::move(retry);
+    keeping.stretching.keep_corners_at = anchors_near_folds(attempt, source, target, result.anchors[0]);
+    MapAttempt retry = attempt_map(second_layout, source, target, result.anchors, refined, keeping, settings,
+                                   result.seconds, stage);
+    if (retry.folds() < attempt.folds()) attempt = std::move(retry);
   }
   watch.lap();
-  const CrossMap& cross = *attempt->cross;
-  const ComposedImages& composed = attempt->composed;
+  const CrossMap& cross = *attempt.cross;
+  const ComposedImages& composed = attempt.composed;
   result.fallback_polygons = cross.fallback_polygons();
   result.inverted_triangles = cross.inverted_triangles();
-  result.optimization = attempt->optimization;
+  result.optimization = attempt.optimization;
   const std::vector<std::array<int, 3>> faces = triangles_of(source);
   result.relaxation = cross.relaxation();
   const std::vector<MappedPoint>& images = composed.untangled.images;
@@ -246,7 +247,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
                          untangled.rounds};
   }
   const int n_vertices = static_cast<int>(source.n_vertices());
-  const Layout& layout = attempt->layout.layout;
+  const Layout& layout = attempt.layout->layout;
   result.correspondence.resize(n_vertices);
   result.remesh_vertices.resize(n_vertices, 3);
   for (int v = 0; v < n_vertices; ++v) {
@@ -282,7 +283,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   for (const PlacedAnchor& anchor : result.anchors[0].anchors) anchor_names.push_back(anchor.name);
   result.folds_by_anchor = folds_by_anchor(layout.sides[0].mesh, layout.sides[0].anchor_vertices,
                                            anchor_names, faces, result.quality.flipped_faces);
-  result.layout = std::move(attempt->layout);  // the cross map is not used past here
+  if (attempt.layout != &result.layout) result.layout = second_layout;  // a copy, only when it won
   result.seconds.metrics = watch.lap();
   result.seconds.total = total.lap();
   return result;
