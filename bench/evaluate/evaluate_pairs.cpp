@@ -5,10 +5,11 @@
 // greedy swapping on eq. 13 for every curve; By AD / By L2: greedy swapping on the dense metrics
 // of section 4.1, the real maps of the two patches; Balanced: section 4.3; Balanced + merging:
 // section 5 after it, xparam's default, the only configuration with map_pair's second layout
-// (corners kept) when the map folds; then the default on its first layout only, with corners kept
-// on its only layout, and without relaxing the patch maps), it runs the whole pair pipeline (map_pair, remesh untangling on) and
-// prints E_L2 (eq. 6), E_ang (eq. 3), the flipped remesh faces, the area ratio (remesh over
-// target), the swaps and merges, the seconds of the optimization and of the whole pair, and,
+// (corners kept near the folds) when the map folds; then the default on its first layout only,
+// with every corner kept on its only layout, and without relaxing the patch maps), it runs the
+// whole pair pipeline (map_pair, remesh untangling on) and prints E_L2 (eq. 6), E_ang (eq. 3),
+// the flipped remesh faces, the area ratio (remesh over target), the swaps and merges, the
+// seconds of the optimization and of the whole pair, and,
 // for pairs whose meshes share a vertex order (exact ground truth) and for the SHREC'19 pairs
 // (ground truth through each shape's registration to SMPL), the mean distance from each
 // template vertex's image to its true counterpart as a fraction of the target's bounding-box

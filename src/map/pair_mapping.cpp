@@ -21,6 +21,13 @@ std::vector<VertexHandle> anchor_vertices(const PlacedAnchors& placed) {
   return vertices;
 }
 
+std::vector<std::string> anchor_names(const PlacedAnchors& placed) {
+  std::vector<std::string> names;
+  names.reserve(placed.anchors.size());
+  for (const PlacedAnchor& anchor : placed.anchors) names.push_back(anchor.name);
+  return names;
+}
+
 // The patch of each template input face: the one holding most of its area among its refined
 // pieces (a layout curve may cut an input face); ties go to the smaller patch id.
 std::vector<int> input_face_patches(const Mesh& refined, int n_input_faces) {
@@ -101,7 +108,8 @@ struct MapAttempt {
   int folds() const { return composed.untangled.flipped_after; }
 };
 
-MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& source, const Mesh& target,
+MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& source,
+                       const std::vector<std::array<int, 3>>& faces, const Mesh& target,
                        const std::array<PlacedAnchors, 2>& anchors, const std::array<const Mesh*, 2>& refined,
                        const DomainOptimizationSettings& optimization, const PairSettings& settings,
                        PairSeconds& seconds, const std::function<void(const char*)>& stage) {
@@ -130,7 +138,6 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
   XP_ASSERT(layout.sides[0].mesh.n_vertices() >= source.n_vertices());
   std::vector<SurfacePoint> anchor_points;
   for (const PlacedAnchor& anchor : anchors[0].anchors) anchor_points.push_back(anchor.input_point);
-  const std::vector<std::array<int, 3>> faces = triangles_of(source);
   ComposedImages& composed = attempt.composed;
   composed = compose_images(cross, source, target, anchor_points, settings);
   // Relaxing can leave a fold in a strongly curved spot (a heel, a hoof) that the untangling
@@ -164,12 +171,9 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
 // its layout, ascending: the corners a second layout keeps open. The neighbours count because a
 // fold near an anchor may come from the corner at the other end of one of its curves (SHREC'19
 // 1: the folds are at the index knuckle, the collapsed corner at the fingertip).
-std::vector<int> anchors_near_folds(const MapAttempt& attempt, const Mesh& source, const Mesh& target,
-                                    const PlacedAnchors& anchors) {
+std::vector<int> anchors_near_folds(const MapAttempt& attempt, const std::vector<std::array<int, 3>>& faces,
+                                    const Mesh& target, const std::vector<std::string>& names) {
   const LayoutSide& side = attempt.layout->layout.sides[0];
-  const std::vector<std::array<int, 3>> faces = triangles_of(source);
-  std::vector<std::string> names;
-  for (const PlacedAnchor& anchor : anchors.anchors) names.push_back(anchor.name);
   std::vector<bool> near(names.size(), false);
   for (const AnchorFolds& folds : folds_by_anchor(
            side.mesh, side.anchor_vertices, names, faces,
@@ -209,7 +213,9 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   result.seconds.anchors = watch.lap();
 
   const std::array<const Mesh*, 2> refined = {&source_refined, &target_refined};
-  MapAttempt attempt = attempt_map(result.layout, source, target, result.anchors, refined,
+  const std::vector<std::array<int, 3>> faces = triangles_of(source);
+  const std::vector<std::string> names = anchor_names(result.anchors[0]);
+  MapAttempt attempt = attempt_map(result.layout, source, faces, target, result.anchors, refined,
                                    settings.optimization, settings, result.seconds, stage);
   ConsistentLayoutResult second_layout;  // the second attempt's, when there is one
   // Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
@@ -222,9 +228,9 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
       !first.stretching.keep_corners) {
     DomainOptimizationSettings keeping = first;
     keeping.stretching.keep_corners = true;
-    keeping.stretching.keep_corners_at = anchors_near_folds(attempt, source, target, result.anchors[0]);
-    MapAttempt retry = attempt_map(second_layout, source, target, result.anchors, refined, keeping, settings,
-                                   result.seconds, stage);
+    keeping.stretching.keep_corners_at = anchors_near_folds(attempt, faces, target, names);
+    MapAttempt retry = attempt_map(second_layout, source, faces, target, result.anchors, refined, keeping,
+                                   settings, result.seconds, stage);
     if (retry.folds() < attempt.folds()) attempt = std::move(retry);
   }
   watch.lap();
@@ -233,7 +239,6 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   result.fallback_polygons = cross.fallback_polygons();
   result.inverted_triangles = cross.inverted_triangles();
   result.optimization = attempt.optimization;
-  const std::vector<std::array<int, 3>> faces = triangles_of(source);
   result.relaxation = cross.relaxation();
   const std::vector<MappedPoint>& images = composed.untangled.images;
   const TemplateWarp& warp = composed.untangled.warp;
@@ -279,10 +284,8 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   }
   result.distortion = measure_distortion(source_positions, image_positions, faces);
   result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
-  std::vector<std::string> anchor_names;
-  for (const PlacedAnchor& anchor : result.anchors[0].anchors) anchor_names.push_back(anchor.name);
-  result.folds_by_anchor = folds_by_anchor(layout.sides[0].mesh, layout.sides[0].anchor_vertices,
-                                           anchor_names, faces, result.quality.flipped_faces);
+  result.folds_by_anchor = folds_by_anchor(layout.sides[0].mesh, layout.sides[0].anchor_vertices, names,
+                                           faces, result.quality.flipped_faces);
   if (attempt.layout != &result.layout) result.layout = second_layout;  // a copy, only when it won
   result.seconds.metrics = watch.lap();
   result.seconds.total = total.lap();
