@@ -36,7 +36,8 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
   command.add_flag(
       "--second-layout,!--no-second-layout", settings.retry_keeping_corners,
       "When the remesh still folds, build the base domain again with corners kept (as --keep-corners) "
-      "at the anchors near the folds, and keep the map with fewer folds (default on)");
+      "at the anchors near the folds and their neighbours, then, if it folds too, at the anchors near "
+      "the folds alone, and keep the map with the fewest folds (default on)");
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");

@@ -167,25 +167,30 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
   return attempt;
 }
 
-// The anchors nearest the attempt's folded faces (map/fold_report.h) and their neighbours in
-// its layout, ascending: the corners a second layout keeps open. The neighbours count because a
-// fold near an anchor may come from the corner at the other end of one of its curves (SHREC'19
-// 1: the folds are at the index knuckle, the collapsed corner at the fingertip).
-std::vector<int> anchors_near_folds(const MapAttempt& attempt, const std::vector<std::array<int, 3>>& faces,
-                                    const Mesh& target, const std::vector<std::string>& names) {
+// The anchors nearest the attempt's folded faces (map/fold_report.h), ascending.
+std::vector<int> anchors_at_folds(const MapAttempt& attempt, const std::vector<std::array<int, 3>>& faces,
+                                  const Mesh& target, const std::vector<std::string>& names) {
   const LayoutSide& side = attempt.layout->layout.sides[0];
-  std::vector<bool> near(names.size(), false);
+  std::vector<int> anchors;
   for (const AnchorFolds& folds : folds_by_anchor(
            side.mesh, side.anchor_vertices, names, faces,
            measure_remesh_quality(faces, attempt.composed.untangled.images, target).flipped_faces))
-    near[folds.anchor] = true;
-  std::vector<bool> kept = near;
-  for (const LayoutEdge& edge : attempt.layout->layout.edges) {
-    if (near[edge.anchors[0]]) kept[edge.anchors[1]] = true;
-    if (near[edge.anchors[1]]) kept[edge.anchors[0]] = true;
+    anchors.push_back(folds.anchor);
+  std::sort(anchors.begin(), anchors.end());
+  return anchors;
+}
+
+// `anchors` and their neighbours in the layout, ascending.
+std::vector<int> with_layout_neighbours(const std::vector<int>& anchors, const Layout& layout,
+                                        int n_anchors) {
+  std::vector<bool> kept(n_anchors, false);
+  for (int a : anchors) kept[a] = true;
+  for (const LayoutEdge& edge : layout.edges) {
+    if (std::binary_search(anchors.begin(), anchors.end(), edge.anchors[0])) kept[edge.anchors[1]] = true;
+    if (std::binary_search(anchors.begin(), anchors.end(), edge.anchors[1])) kept[edge.anchors[0]] = true;
   }
   std::vector<int> result;
-  for (int k = 0; k < static_cast<int>(kept.size()); ++k) {
+  for (int k = 0; k < n_anchors; ++k) {
     if (kept[k]) result.push_back(k);
   }
   return result;
@@ -217,21 +222,35 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   const std::vector<std::string> names = anchor_names(result.anchors[0]);
   MapAttempt attempt = attempt_map(result.layout, source, faces, target, result.anchors, refined,
                                    settings.optimization, settings, result.seconds, stage);
-  ConsistentLayoutResult second_layout;  // the second attempt's, when there is one
+  // The later attempts' layouts, when there are any (a CrossMap points into its layout).
+  std::array<ConsistentLayoutResult, 2> later_layouts;
   // Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
   // and spread on the other; the map then folds near the anchor. When folds remain after
-  // untangling (without it, Gamma's own folds are asked for), a second layout keeps such corners
-  // open (StretchSettings::keep_corners) at the anchors near the folds, and the map with fewer
-  // folds is kept, the first on a tie.
+  // untangling (without it, Gamma's own folds are asked for), later layouts keep such corners
+  // open (StretchSettings::keep_corners): first at the anchors nearest the folds and their
+  // layout neighbours (SHREC'19 1 folds at the index knuckle, but the corner that collapsed is
+  // at the fingertip, at the other end of a curve); then, if that map still folds, at the
+  // anchors nearest the first map's folds alone (cat/horse: the neighbours' corners kept open
+  // cost more than they gain). The map with the fewest folds is kept, the earliest on a tie.
   const DomainOptimizationSettings& first = settings.optimization;
   if (attempt.folds() > 0 && settings.retry_keeping_corners && settings.untangle && first.stretch &&
       !first.stretching.keep_corners) {
+    const std::vector<int> folded = anchors_at_folds(attempt, faces, target, names);
+    const std::vector<int> near_folds =
+        with_layout_neighbours(folded, attempt.layout->layout, static_cast<int>(names.size()));
     DomainOptimizationSettings keeping = first;
     keeping.stretching.keep_corners = true;
-    keeping.stretching.keep_corners_at = anchors_near_folds(attempt, faces, target, names);
-    MapAttempt retry = attempt_map(second_layout, source, faces, target, result.anchors, refined, keeping,
-                                   settings, result.seconds, stage);
-    if (retry.folds() < attempt.folds()) attempt = std::move(retry);
+    for (int k = 0; k < 2 && attempt.folds() > 0; ++k) {
+      keeping.stretching.keep_corners_at = k == 0 ? near_folds : folded;
+      if (k == 1 && folded == near_folds) break;  // the same layout again
+      MapAttempt retry = attempt_map(later_layouts[k], source, faces, target, result.anchors, refined,
+                                     keeping, settings, result.seconds, stage);
+      ++result.layouts_built;
+      if (retry.folds() < attempt.folds()) {
+        attempt = std::move(retry);
+        result.layout_kept = result.layouts_built;
+      }
+    }
   }
   watch.lap();
   const CrossMap& cross = *attempt.cross;
@@ -286,7 +305,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
   result.folds_by_anchor = folds_by_anchor(layout.sides[0].mesh, layout.sides[0].anchor_vertices, names,
                                            faces, result.quality.flipped_faces);
-  if (attempt.layout != &result.layout) result.layout = second_layout;  // a copy, only when it won
+  if (attempt.layout != &result.layout) result.layout = *attempt.layout;  // a copy, only when a later one won
   result.seconds.metrics = watch.lap();
   result.seconds.total = total.lap();
   return result;

@@ -35,8 +35,9 @@ struct PairSettings {
       optimization;            ///< stretching, swapping, merging (domain/base_domain_optimization.h)
   CrossMapSettings cross_map;  ///< the patch maps' relaxation (map/cross_map.h)
   /// When the remesh still folds after untangling, build the base domain again with corners kept
-  /// open (StretchSettings::keep_corners) at the anchors near the folds and their neighbours, and
-  /// keep the map with fewer folds (never without untangling: then Gamma's own folds are asked for).
+  /// open (StretchSettings::keep_corners) at the anchors near the folds and their neighbours, and,
+  /// if that map folds too, a third time at the anchors near the folds alone; keep the map with
+  /// the fewest folds (never without untangling: then Gamma's own folds are asked for).
   bool retry_keeping_corners = true;
   /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
   bool untangle = true;
@@ -92,6 +93,8 @@ struct PairMapping {
   std::vector<MappedCurve> curves;   ///< the template's feature curves on the target, in input order
   ConsistentLayoutResult layout;  ///< the optimized layout on both (refined) meshes, for exports and counts
   DomainOptimizationResult optimization;  ///< what the base-domain optimization did (swaps, merges, seconds)
+  int layouts_built = 1;  ///< base domains built and mapped (PairSettings::retry_keeping_corners): 1 to 3
+  int layout_kept = 1;    ///< which of them the map is on (1: the first)
   std::array<PlacedAnchors, 2> anchors;  ///< template and target anchors as placed (snap distances, warnings)
   std::array<int, 2> fallback_polygons{};  ///< patches per side whose degenerate LPBD was replaced
   std::array<int, 2>

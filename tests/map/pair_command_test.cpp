@@ -89,6 +89,8 @@ TEST(PairCommand, MetricsReportTheMapTheUntanglingAndTheStages) {
   EXPECT_LT(metrics["E_L2"].get<double>(), 1.1);  // measured 1.026
   EXPECT_NEAR(metrics["area_ratio"].get<double>(), 1.0, 0.02);
   EXPECT_EQ(metrics["anchors"], 41);
+  EXPECT_EQ(metrics["layouts"]["built"], 1);  // no fold on the first layout: no later one
+  EXPECT_EQ(metrics["layouts"]["kept"], 1);
   EXPECT_EQ(metrics["relaxation"]["enabled"], true);
   EXPECT_LE(metrics["relaxation"]["energy_after"].get<double>(),
             metrics["relaxation"]["energy_before"].get<double>());

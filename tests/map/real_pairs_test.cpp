@@ -119,6 +119,8 @@ TEST(ToscaHorseWolf, SecondLayoutUnfoldsTheEar) {
   const PairMapping map = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {});
 
   EXPECT_GE(first.quality.flipped_faces.size(), 1u);  // measured 1
+  EXPECT_EQ(map.layouts_built, 2);                    // the second one has no fold: no third is built
+  EXPECT_EQ(map.layout_kept, 2);
   EXPECT_TRUE(map.optimization.settings.stretching.keep_corners);
   EXPECT_TRUE(map.quality.flipped_faces.empty()) << map.quality.flipped_faces.size() << " folded";
   EXPECT_NEAR(map.quality.area_ratio, 1.0, 0.02);  // measured 0.986
@@ -161,6 +163,8 @@ TEST(ShrecHuman, CornersKeptOpenUnfoldTheHand) {
   const PairMapping map = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {});
 
   EXPECT_GE(first.quality.flipped_faces.size(), 1u);  // measured 1, at the left index knuckle
+  EXPECT_EQ(first.layouts_built, 1);
+  EXPECT_EQ(map.layout_kept, 2);
   // The second layout keeps the corners at the anchors near the folds and their neighbours,
   // among them the fingertip.
   const StretchSettings& kept = map.optimization.settings.stretching;
@@ -176,6 +180,47 @@ TEST(ShrecHuman, CornersKeptOpenUnfoldTheHand) {
   EXPECT_EQ(map.inverted_triangles[1], 0);
   // The registration itself is off by 7 mm at the median (SOURCE.txt); measured 0.0117.
   EXPECT_LT(test::distance_to_truth(map, target.mesh, truth).mean, 0.015);
+}
+
+// Schmidt et al. 2023's cat against its horse (17 landmarks, no ground truth). The first layout
+// folds 11 remesh faces over 6 anchors; the second, corners kept near them and at their layout
+// neighbours, does not fold fewer; the third, corners kept at the fold anchors alone, folds 6.
+TEST(CatHorse, ThirdLayoutFoldsLess) {
+  const std::filesystem::path data = test::shared_data_dir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
+  const std::filesystem::path dir = data / "landmark_pairs_schmidt2023/yang2020_cat_horse";
+  const LoadedMesh source = load_mesh(dir / "input0.obj");
+  const LoadedMesh target = load_mesh(dir / "input1.obj");
+  const auto anchors_at = [](const std::vector<int>& ids, const std::filesystem::path& file) {
+    AnchorSet set;
+    set.source = file.string();
+    for (int id : ids)
+      set.anchors.push_back({"a" + std::to_string(set.anchors.size()), AnchorVertex{id}, set.source});
+    return set;
+  };
+  const AnchorSet source_anchors =
+      anchors_at(read_vertex_ids(dir / "landmarks0.txt"), dir / "landmarks0.txt");
+  const AnchorSet target_anchors =
+      anchors_at(read_vertex_ids(dir / "landmarks1.txt"), dir / "landmarks1.txt");
+  ASSERT_EQ(source_anchors.anchors.size(), 17u);
+  PairSettings first_layout_only;
+  first_layout_only.retry_keeping_corners = false;
+  const PairMapping first =
+      map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {}, first_layout_only);
+  const PairMapping map = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {});
+
+  ASSERT_GE(first.folds_by_anchor.size(), 2u);  // measured 11 folds over 6 anchors
+  EXPECT_EQ(map.layouts_built, 3);
+  EXPECT_EQ(map.layout_kept, 3);
+  // Corners kept at exactly the anchors nearest the first map's folds.
+  std::vector<int> fold_anchors;
+  for (const AnchorFolds& folds : first.folds_by_anchor) fold_anchors.push_back(folds.anchor);
+  std::sort(fold_anchors.begin(), fold_anchors.end());
+  EXPECT_EQ(map.optimization.settings.stretching.keep_corners_at, fold_anchors);
+  EXPECT_LT(map.quality.flipped_faces.size(), first.quality.flipped_faces.size());  // measured 6 against 11
+  EXPECT_NEAR(map.quality.area_ratio, 1.0, 0.02);                                   // measured 0.9996
+  EXPECT_EQ(map.inverted_triangles[0], 0);
+  EXPECT_EQ(map.inverted_triangles[1], 0);
 }
 
 }  // namespace
