@@ -36,7 +36,7 @@ struct StretchSettings {
   int max_clearance_rounds = 32;
   /// Keep corners (stretch_layout): a curve whose straightening collapses a patch corner on one
   /// side keeps its traced route. Off by default; map_pair turns it on, at the anchors near the
-  /// folds, when it builds a second layout because the map on the first one folds
+  /// folds, when it builds a second or third layout because the map on the first one folds
   /// (map/pair_mapping.h).
   bool keep_corners = false;
   /// With keep_corners: only corners at these anchors are kept (layout anchor ids); empty: all.

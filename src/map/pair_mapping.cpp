@@ -238,11 +238,12 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     const std::vector<int> folded = anchors_at_folds(attempt, faces, target, names);
     const std::vector<int> near_folds =
         with_layout_neighbours(folded, attempt.layout->layout, static_cast<int>(names.size()));
+    std::vector<std::vector<int>> corners_kept_at = {near_folds};
+    if (folded != near_folds) corners_kept_at.push_back(folded);  // else the same layout again
     DomainOptimizationSettings keeping = first;
     keeping.stretching.keep_corners = true;
-    for (int k = 0; k < 2 && attempt.folds() > 0; ++k) {
-      keeping.stretching.keep_corners_at = k == 0 ? near_folds : folded;
-      if (k == 1 && folded == near_folds) break;  // the same layout again
+    for (std::size_t k = 0; k < corners_kept_at.size() && attempt.folds() > 0; ++k) {
+      keeping.stretching.keep_corners_at = corners_kept_at[k];
       MapAttempt retry = attempt_map(later_layouts[k], source, faces, target, result.anchors, refined,
                                      keeping, settings, result.seconds, stage);
       ++result.layouts_built;

@@ -51,15 +51,16 @@ INSTANTIATE_TEST_SUITE_P(CaesarLandmarks, FaustPairs,
                                            FaustCase{"tr_reg_090", 0.005}),
                          [](const ::testing::TestParamInfo<FaustCase>& pair) { return pair.param.target; });
 
-// The anchors of a TOSCA correspondence file (.pid: the vertex id is the first number of a line).
-AnchorSet tosca_anchors(const std::filesystem::path& pid) {
+// Anchors "a0", "a1", ... at the vertex ids of a file, the first number of each line: a TOSCA
+// correspondence file (.pid) or a landmark file of Schmidt et al. 2023 (one number a line).
+AnchorSet indexed_anchors(const std::filesystem::path& file) {
   AnchorSet set;
-  set.source = pid.string();
-  std::ifstream in(pid);
+  set.source = file.string();
+  std::ifstream in(file);
   for (int id = 0; in >> id;) {
     std::string rest;
     std::getline(in, rest);
-    set.anchors.push_back({"a" + std::to_string(set.anchors.size()), AnchorVertex{id}, pid.string()});
+    set.anchors.push_back({"a" + std::to_string(set.anchors.size()), AnchorVertex{id}, set.source});
   }
   return set;
 }
@@ -74,7 +75,7 @@ TEST(ToscaHorse, SqueezedTailIsCoveredAndGluingLowersTheEnergy) {
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
   const LoadedMesh source = load_mesh(data / "tosca/horse0.off");
   const LoadedMesh target = load_mesh(data / "tosca/horse5.off");
-  const AnchorSet anchors = tosca_anchors(data / "tosca/corrs/horse.pid");
+  const AnchorSet anchors = indexed_anchors(data / "tosca/corrs/horse.pid");
   ASSERT_EQ(anchors.anchors.size(), 21u);
   const PairMapping map = map_pair(source.mesh, anchors, target.mesh, anchors, {});
   PairSettings unglued;
@@ -110,8 +111,8 @@ TEST(ToscaHorseWolf, SecondLayoutUnfoldsTheEar) {
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
   const LoadedMesh source = load_mesh(data / "tosca/horse0.off");
   const LoadedMesh target = load_mesh(data / "tosca/wolf0.off");
-  const AnchorSet source_anchors = tosca_anchors(data / "tosca/corrs/horse.pid");
-  const AnchorSet target_anchors = tosca_anchors(data / "tosca/corrs/wolf.pid");
+  const AnchorSet source_anchors = indexed_anchors(data / "tosca/corrs/horse.pid");
+  const AnchorSet target_anchors = indexed_anchors(data / "tosca/corrs/wolf.pid");
   PairSettings first_layout_only;
   first_layout_only.retry_keeping_corners = false;
   const PairMapping first =
@@ -191,17 +192,8 @@ TEST(CatHorse, ThirdLayoutFoldsLess) {
   const std::filesystem::path dir = data / "landmark_pairs_schmidt2023/yang2020_cat_horse";
   const LoadedMesh source = load_mesh(dir / "input0.obj");
   const LoadedMesh target = load_mesh(dir / "input1.obj");
-  const auto anchors_at = [](const std::vector<int>& ids, const std::filesystem::path& file) {
-    AnchorSet set;
-    set.source = file.string();
-    for (int id : ids)
-      set.anchors.push_back({"a" + std::to_string(set.anchors.size()), AnchorVertex{id}, set.source});
-    return set;
-  };
-  const AnchorSet source_anchors =
-      anchors_at(read_vertex_ids(dir / "landmarks0.txt"), dir / "landmarks0.txt");
-  const AnchorSet target_anchors =
-      anchors_at(read_vertex_ids(dir / "landmarks1.txt"), dir / "landmarks1.txt");
+  const AnchorSet source_anchors = indexed_anchors(dir / "landmarks0.txt");
+  const AnchorSet target_anchors = indexed_anchors(dir / "landmarks1.txt");
   ASSERT_EQ(source_anchors.anchors.size(), 17u);
   PairSettings first_layout_only;
   first_layout_only.retry_keeping_corners = false;
