@@ -120,6 +120,7 @@ std::string batch_options_json(const PairSettings& settings) {
   options["relax"] = settings.cross_map.relax;
   options["second_layout"] = settings.retry_keeping_corners;
   options["untangle"] = settings.untangle;
+  options["release_anchors"] = settings.max_released_anchors;
   return options.dump();
 }
 

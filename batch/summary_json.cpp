@@ -34,6 +34,7 @@ nlohmann::ordered_json target_json(const TargetOutcome& outcome) {
   metrics["gt_error"] = number_or_null(m.gt_error);
   metrics["swaps"] = count_or_null(m.swaps);
   metrics["merges"] = count_or_null(m.merges);
+  metrics["released_anchors"] = count_or_null(m.released_anchors);
   target["metrics"] = metrics;
   return target;
 }

@@ -11,6 +11,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <optional>
 
@@ -83,6 +84,13 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
                                                         static_cast<Eigen::Index>(mapping.face_patch.size()));
   record.face_l2_stretch = to_eigen_vector(mapping.distortion.face_l2_stretch);
   record.face_angle_distortion = to_eigen_vector(mapping.distortion.face_angle_distortion);
+  const std::vector<std::string>& anchor_names = prepared.record.anchor_names;
+  record.anchor_miss = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(anchor_names.size()), TargetMetrics::kNaN);
+  for (const ReleasedAnchor& released : mapping.released_anchors) {
+    const auto at = std::find(anchor_names.begin(), anchor_names.end(), released.name);
+    XP_ASSERT(at != anchor_names.end());
+    record.anchor_miss[at - anchor_names.begin()] = released.miss_distance;
+  }
 
   for (const MappedCurve& curve : mapping.curves) {
     TransferredCurve out;
@@ -106,6 +114,7 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
   metrics.area_ratio = mapping.quality.area_ratio;
   metrics.swaps = mapping.optimization.swaps;
   metrics.merges = mapping.optimization.merges;
+  metrics.released_anchors = static_cast<int>(mapping.released_anchors.size());
   if (target.ground_truth)
     metrics.gt_error =
         ground_truth_error(record.remesh_vertices, *target.ground_truth, vertex_matrix(target.loaded.mesh));

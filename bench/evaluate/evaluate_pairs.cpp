@@ -15,7 +15,7 @@
 // template vertex's image to its true counterpart as a fraction of the target's bounding-box
 // diagonal.
 //
-// Usage: xparam_evaluate [--data DIR] [--only SUBSTRING]
+// Usage: xparam_evaluate [--data DIR] [--only SUBSTRING] [--configuration NAME] [--release-anchors N]
 // DIR defaults to ../shared/data beside the source tree; pairs whose files are absent are skipped.
 #include "bench_inputs.h"
 #include "core/anchors.h"
@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -214,7 +215,16 @@ std::vector<int> identity(int n) {
   return ids;
 }
 
-void evaluate(const PairSpec& pair, const fs::path& data, const std::string& only_configuration) {
+// The released anchors' names, or "-".
+std::string released_names(const PairMapping& map) {
+  std::string names;
+  for (const ReleasedAnchor& anchor : map.released_anchors) names += (names.empty() ? "" : ", ") + anchor.name;
+  return names.empty() ? "-" : names;
+}
+
+// `max_released_anchors` is PairSettings::max_released_anchors of every configuration.
+void evaluate(const PairSpec& pair, const fs::path& data, const std::string& only_configuration,
+              int max_released_anchors) {
   const LoadedMesh source = load_mesh(data / pair.source);
   const LoadedMesh target = load_mesh(data / pair.target);
   std::vector<int> source_ids = read_ids(data / pair.source_ids);
@@ -246,24 +256,32 @@ void evaluate(const PairSpec& pair, const fs::path& data, const std::string& onl
     std::printf("(%zu landmarks left out: the registration puts each on the vertex of another)\n", left_out);
   std::printf(
       "| configuration | E_L2 | E_ang | flipped | area ratio | gt error | swaps | merges | optimize s | "
-      "total s |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const Configuration& configuration : configurations()) {
+      "total s | released |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (Configuration& configuration : configurations()) {
     if (!only_configuration.empty() && configuration.name != only_configuration) continue;
+    configuration.settings.max_released_anchors = max_released_anchors;
     try {
       const PairMapping map =
           map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {}, configuration.settings);
       const std::string gt =
           truth.empty() ? std::string("-") : std::to_string(ground_truth_error(map, target.mesh, truth));
-      std::printf("| %s | %.4f | %.4f | %zu | %.4f | %s | %d | %d | %.3f | %.3f |\n",
+      std::printf("| %s | %.4f | %.4f | %zu | %.4f | %s | %d | %d | %.3f | %.3f | %s |\n",
                   configuration.name.c_str(), map.distortion.all.e_l2, map.distortion.all.e_ang,
                   map.quality.flipped_faces.size(), map.quality.area_ratio, gt.c_str(),
-                  map.optimization.swaps, map.optimization.merges, map.seconds.optimize, map.seconds.total);
+                  map.optimization.swaps, map.optimization.merges, map.seconds.optimize, map.seconds.total,
+                  released_names(map).c_str());
     } catch (const Error& e) {
       std::printf("| %s | failed: %s |\n", configuration.name.c_str(), e.what());
     }
     std::fflush(stdout);
   }
+}
+
+// Whether `text` is a non-negative decimal count.
+bool is_count(const std::string& text) {
+  return !text.empty() && text.size() < 9 &&
+         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 }  // namespace
@@ -272,6 +290,7 @@ int main(int argc, char** argv) {
   fs::path data = fs::path(XPARAM_SOURCE_DIR).parent_path() / "shared" / "data";
   std::string only;
   std::string only_configuration;  // empty: all
+  int max_released_anchors = 0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string flag = argv[i];
     if (flag == "--data") {
@@ -280,8 +299,11 @@ int main(int argc, char** argv) {
       only = argv[i + 1];
     } else if (flag == "--configuration") {
       only_configuration = argv[i + 1];
+    } else if (flag == "--release-anchors" && is_count(argv[i + 1])) {
+      max_released_anchors = std::atoi(argv[i + 1]);
     } else {
-      std::cerr << "usage: xparam_evaluate [--data DIR] [--only SUBSTRING] [--configuration NAME]\n";
+      std::cerr << "usage: xparam_evaluate [--data DIR] [--only SUBSTRING] [--configuration NAME] "
+                   "[--release-anchors N]\n";
       return 1;
     }
   }
@@ -296,7 +318,7 @@ int main(int argc, char** argv) {
       continue;
     }
     try {
-      evaluate(pair, data, only_configuration);
+      evaluate(pair, data, only_configuration, max_released_anchors);
     } catch (const std::exception& e) {
       std::cout << "\n" << pair.name << ": cannot evaluate: " << e.what() << "\n";
     }

@@ -40,7 +40,7 @@ struct BatchOptions {
   std::string summary;
   bool keep_parts = false;
   double checkpoint_seconds = 30.0;
-  PairSettings map;  ///< --optimize, --merge, --no-stretch, --keep-corners, --second-layout, --untangle
+  PairSettings map;  ///< --optimize, --merge, --no-stretch, --keep-corners, --second-layout, --untangle, --release-anchors
 };
 
 [[noreturn]] void exit_with(int code, const std::string& message) {

@@ -57,7 +57,8 @@ nlohmann::json target_json(const ArchiveTargetSummary& t) {
             {"area_ratio", m.area_ratio},
             {"gt_error", m.gt_error},
             {"swaps", m.swaps},
-            {"merges", m.merges}}},
+            {"merges", m.merges},
+            {"released_anchors", m.released_anchors}}},
           {"seconds", seconds}};
 }
 
@@ -101,11 +102,12 @@ void run_inspect(const InspectOptions& options) {
   std::size_t width = 4;
   for (const ArchiveTargetSummary& target : reader.targets()) width = std::max(width, target.name.size() + 2);
   std::cout << padded("name", width) << "status  " << padded("E_L2", 10) << padded("E_ang", 10)
-            << padded("flipped", 8) << padded("gt_error", 10) << padded("seconds", 9) << "error\n";
+            << padded("flipped", 8) << padded("released", 9) << padded("gt_error", 10) << padded("seconds", 9) << "error\n";
   for (const ArchiveTargetSummary& target : reader.targets()) {
     const TargetMetrics& m = target.metrics;
     std::cout << padded(target.name, width) << padded(target.ok ? "ok" : "failed", 8)
               << padded(number(m.e_l2), 10) << padded(number(m.e_ang), 10) << padded(count(m.flipped_faces), 8)
+              << padded(count(m.released_anchors), 9)
               << padded(number(m.gt_error), 10) << padded(number(target.seconds.back()), 9) << target.error << "\n";
   }
 }
@@ -116,7 +118,7 @@ void add_inspect_command(CLI::App& app) {
   auto options = std::make_shared<InspectOptions>();
   CLI::App* inspect = app.add_subcommand(
       "inspect", "List what an xparam archive holds: provenance, template, and per target its status, "
-                 "metrics (E_L2, E_ang, flipped faces, ground-truth error), seconds and error text.");
+                 "metrics (E_L2, E_ang, flipped faces, released anchors, ground-truth error), seconds and error text.");
   inspect->add_option("archive", options->archive, "Archive (.h5) written by xparam batch or merge")
       ->required()
       ->check(CLI::ExistingFile);

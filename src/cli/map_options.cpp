@@ -38,6 +38,14 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "When the remesh still folds, build the base domain again with corners kept (as --keep-corners) "
       "at the anchors near the folds and their neighbours, then, if it folds too, at the anchors near "
       "the folds alone, and keep the map with the fewest folds (default on)");
+  command
+      .add_option(
+          "--release-anchors", settings.max_released_anchors,
+          "For scans whose landmarks disagree with the template's: when the remesh still folds, map "
+          "without an anchor near the folds, one at a time, up to N anchors, keeping each release that "
+          "folds less with the area ratio within 2%; the released anchors and how far the map lands "
+          "from them are reported (default 0: every anchor is kept)")
+      ->check(CLI::NonNegativeNumber);
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");

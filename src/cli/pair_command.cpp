@@ -56,8 +56,11 @@ void run_pair(const PairOptions& options) {
     const AnchorFolds& most = mapping.folds_by_anchor.front();
     std::cout << " (" << most.folded_faces << " nearest \"" << most.name << "\")";
   }
-  std::cout << "  area ratio " << mapping.quality.area_ratio << "  (" << mapping.seconds.total << " s)\n"
-            << "results in " << options.out << "\n";
+  std::cout << "  area ratio " << mapping.quality.area_ratio << "  (" << mapping.seconds.total << " s)\n";
+  for (const ReleasedAnchor& anchor : mapping.released_anchors)
+    std::cout << "released anchor \"" << anchor.name << "\" (" << anchor.folded_faces
+              << " folded faces near it); the map lands " << anchor.miss_distance << " from its landmark\n";
+  std::cout << "results in " << options.out << "\n";
 }
 
 }  // namespace

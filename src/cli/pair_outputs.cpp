@@ -70,6 +70,15 @@ nlohmann::json folds_json(const std::vector<AnchorFolds>& folds) {
   return list;
 }
 
+nlohmann::json released_json(const std::vector<ReleasedAnchor>& released) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const ReleasedAnchor& anchor : released)
+    list.push_back({{"anchor", anchor.name},
+                    {"folded_faces", anchor.folded_faces},
+                    {"miss_distance", number(anchor.miss_distance)}});
+  return list;
+}
+
 nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping) {
   const Layout& layout = mapping.layout.layout;
   nlohmann::json metrics = {
@@ -91,6 +100,7 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
       {"inverted_parameter_triangles", {mapping.inverted_triangles[0], mapping.inverted_triangles[1]}},
       {"optimization", optimization_json(mapping.optimization)},
       {"layouts", {{"built", mapping.layouts_built}, {"kept", mapping.layout_kept}}},
+      {"released_anchors", released_json(mapping.released_anchors)},
       {"relaxation",
        {{"enabled", mapping.settings.cross_map.relax},
         {"energy_before", mapping.relaxation.energy_before},

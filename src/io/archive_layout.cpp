@@ -5,7 +5,8 @@
 namespace xparam::archive_layout {
 
 MetricsRow to_row(const TargetMetrics& m) {
-  return {m.e_l2, m.e_ang, m.stretch_max_sv, m.flipped_faces, m.area_ratio, m.gt_error, m.swaps, m.merges};
+  return {m.e_l2,     m.e_ang, m.stretch_max_sv, m.flipped_faces,   m.area_ratio,
+          m.gt_error, m.swaps, m.merges,         m.released_anchors};
 }
 
 TargetMetrics from_row(const MetricsRow& r) {
@@ -18,6 +19,7 @@ TargetMetrics from_row(const MetricsRow& r) {
   m.gt_error = r.gt_error;
   m.swaps = r.swaps;
   m.merges = r.merges;
+  m.released_anchors = r.released_anchors;
   return m;
 }
 
@@ -37,6 +39,7 @@ h5::Handle metrics_type(bool packed) {
   insert("gt_error", offsetof(MetricsRow, gt_error), f64);
   insert("swaps", offsetof(MetricsRow, swaps), i32);
   insert("merges", offsetof(MetricsRow, merges), i32);
+  insert("released_anchors", offsetof(MetricsRow, released_anchors), i32);
   if (packed) h5::check(H5Tpack(type.get()), "metrics type", "cannot pack");
   return type;
 }

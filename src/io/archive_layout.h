@@ -24,6 +24,7 @@ struct MetricsRow {
   double gt_error;
   std::int32_t swaps;
   std::int32_t merges;
+  std::int32_t released_anchors;
 };
 
 /// MetricsRow <-> TargetMetrics.

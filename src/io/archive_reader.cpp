@@ -40,6 +40,7 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
     n_vertices_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_vertices"));
     n_faces_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_faces"));
     n_curves_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_curves"));
+    n_anchors_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_anchors"));
   } else {
     provenance_ = {h5::read_string_attribute(file, "xparam_version"),
                    h5::read_string_attribute(file, "git_revision"), h5::read_string_attribute(file, "options_json")};
@@ -47,6 +48,7 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
     n_vertices_ = expect_shape(h5::open_dataset(template_group.get(), "vertices").get(), 2)[0];
     n_faces_ = expect_shape(h5::open_dataset(template_group.get(), "faces").get(), 2)[0];
     n_curves_ = h5::read_strings(template_group.get(), "curves/names").size();
+    n_anchors_ = h5::read_strings(template_group.get(), "anchor_names").size();
   }
 
   const h5::Handle targets = h5::open_group(file, "targets");
@@ -171,6 +173,8 @@ TargetRecord ArchiveReader::read_target(std::size_t row) const {
       Eigen::Map<const Eigen::VectorXd>(h5::read_rows<double>(rows_of("face_l2_stretch").get(), row, 1).data(), face_count);
   t.face_angle_distortion = Eigen::Map<const Eigen::VectorXd>(
       h5::read_rows<double>(rows_of("face_angle_distortion").get(), row, 1).data(), face_count);
+  t.anchor_miss = Eigen::Map<const Eigen::VectorXd>(h5::read_rows<double>(rows_of("anchor_miss").get(), row, 1).data(),
+                                                    static_cast<Eigen::Index>(n_anchors_));
 
   const std::vector<std::int64_t> offsets = h5::read_rows<std::int64_t>(rows_of("curves/offsets").get(), row, 1);
   if (offsets.size() != n_curves_ + 1) throw ArchiveError(path_.string() + ": /targets/curves/offsets has a wrong width");

@@ -70,6 +70,7 @@ class ArchiveReader {
   std::size_t n_vertices_ = 0;
   std::size_t n_faces_ = 0;
   std::size_t n_curves_ = 0;
+  std::size_t n_anchors_ = 0;
   std::vector<ArchiveTargetSummary> targets_;
 };
 

@@ -19,7 +19,7 @@ namespace xparam {
 
 /// Version of the archive layout, stored as the root attribute `schema_version`.
 /// Bump it whenever a dataset is added, removed, renamed or changes meaning.
-inline constexpr int kArchiveSchemaVersion = 1;
+inline constexpr int kArchiveSchemaVersion = 2;  // 2: released anchors
 
 /// The stages whose wall-clock seconds are recorded per target, in column order of
 /// /targets/timings.
@@ -70,6 +70,7 @@ struct TargetMetrics {
   double gt_error = kNaN;        ///< mean distance to the ground-truth correspondence; NaN when none given
   int swaps = -1;                ///< boundary swaps performed (paper section 4)
   int merges = -1;               ///< patch merges performed (paper section 5)
+  int released_anchors = -1;     ///< anchors the map was released from (`--release-anchors`)
 };
 
 /// Everything the archive keeps about one target. A failed target has ok == false, an
@@ -88,6 +89,9 @@ struct TargetRecord {
   Eigen::VectorXi face_patch;             ///< #F layout patch of each template face
   Eigen::VectorXd face_l2_stretch;        ///< #F per-face L2 stretch (paper eq. 3)
   Eigen::VectorXd face_angle_distortion;  ///< #F per-face angle distortion (paper eq. 4)
+  /// #A per template anchor: NaN where the map passes through it; where it was released, the
+  /// distance from the remesh's point at the template's landmark to the target's landmark
+  Eigen::VectorXd anchor_miss;
   std::vector<TransferredCurve> curves;   ///< #C, in the order of TemplateRecord::curves
   TargetMetrics metrics;                  ///< the metrics table row
   StageSeconds seconds = filled_seconds();  ///< wall-clock seconds per stage (not deterministic)

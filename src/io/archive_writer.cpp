@@ -78,7 +78,8 @@ class TargetTables {
       : group_(h5::create_group(file, "targets")),
         n_vertices_(shape.n_vertices),
         n_faces_(shape.n_faces),
-        n_curves_(shape.n_curves) {
+        n_curves_(shape.n_curves),
+        n_anchors_(shape.n_anchors) {
     const hsize_t n = count;
     const h5::Storage per_subject{1, settings.deflate_level};
     remesh_vertices_ = h5::create_dataset<double>(group_.get(), "remesh_vertices", {n, n_vertices_, 3}, per_subject);
@@ -88,6 +89,7 @@ class TargetTables {
     face_l2_stretch_ = h5::create_dataset<double>(group_.get(), "face_l2_stretch", {n, n_faces_}, per_subject);
     face_angle_distortion_ =
         h5::create_dataset<double>(group_.get(), "face_angle_distortion", {n, n_faces_}, per_subject);
+    anchor_miss_ = h5::create_dataset<double>(group_.get(), "anchor_miss", {n, n_anchors_}, {});
     const h5::Handle metrics_file_type = archive_layout::metrics_type(true);
     metrics_ = h5::create_dataset(group_.get(), "metrics", metrics_file_type.get(), {n}, {});
     timings_ = h5::create_dataset<double>(group_.get(), "timings", {n, kTimingStages.size()}, {});
@@ -127,6 +129,7 @@ class TargetTables {
       write_row<std::int32_t>(face_patch_, row, target.face_patch);
       write_row<double>(face_l2_stretch_, row, target.face_l2_stretch);
       write_row<double>(face_angle_distortion_, row, target.face_angle_distortion);
+      write_row<double>(anchor_miss_, row, target.anchor_miss);
     } else {
       // Failed targets keep their row so indices line up with /targets/name.
       const std::vector<double> nan_vertices(n_vertices_ * 3, kNaN);
@@ -139,6 +142,8 @@ class TargetTables {
       h5::write_rows(face_patch_.get(), row, 1, minus_one_faces.data());
       h5::write_rows(face_l2_stretch_.get(), row, 1, nan_faces.data());
       h5::write_rows(face_angle_distortion_.get(), row, 1, nan_faces.data());
+      const std::vector<double> nan_anchors(n_anchors_, kNaN);
+      h5::write_rows(anchor_miss_.get(), row, 1, nan_anchors.data());
     }
     write_curves(row, target);
   }
@@ -201,7 +206,9 @@ class TargetTables {
   hsize_t n_vertices_;
   hsize_t n_faces_;
   std::size_t n_curves_;
+  hsize_t n_anchors_;
   h5::Handle remesh_vertices_, corr_face_, corr_bary_, face_patch_, face_l2_stretch_, face_angle_distortion_;
+  h5::Handle anchor_miss_;
   h5::Handle metrics_, timings_, status_;
   h5::Handle curves_, curve_offsets_, curve_face_, curve_bary_, curve_xyz_;
   std::int64_t curve_points_ = 0;
@@ -216,7 +223,8 @@ void check_unique(const std::vector<std::string>& names, const std::string& wher
 }  // namespace
 
 ArchiveShape shape_of(const TemplateRecord& t) {
-  return {static_cast<std::size_t>(t.vertices.rows()), static_cast<std::size_t>(t.faces.rows()), t.curves.size()};
+  return {static_cast<std::size_t>(t.vertices.rows()), static_cast<std::size_t>(t.faces.rows()), t.curves.size(),
+          t.anchor_names.size()};
 }
 
 void validate_template_record(const TemplateRecord& t) {
@@ -267,6 +275,7 @@ void validate_target_record(const ArchiveShape& shape, const TargetRecord& targe
   expect(target.face_angle_distortion.size(), n_faces, "face_angle_distortion", "faces");
   expect(static_cast<Eigen::Index>(target.curves.size()), static_cast<Eigen::Index>(shape.n_curves), "curves",
          "curves");
+  expect(target.anchor_miss.size(), static_cast<Eigen::Index>(shape.n_anchors), "anchor_miss", "anchors");
   for (std::size_t c = 0; c < target.curves.size(); ++c) {
     const TransferredCurve& curve = target.curves[c];
     const auto points = static_cast<Eigen::Index>(curve.face.size());
@@ -333,6 +342,7 @@ void write_target_part(const std::filesystem::path& path, const ArchiveShape& sh
     h5::write_attribute(file.get(), "n_vertices", static_cast<std::int64_t>(shape.n_vertices));
     h5::write_attribute(file.get(), "n_faces", static_cast<std::int64_t>(shape.n_faces));
     h5::write_attribute(file.get(), "n_curves", static_cast<std::int64_t>(shape.n_curves));
+    h5::write_attribute(file.get(), "n_anchors", static_cast<std::int64_t>(shape.n_anchors));
     TargetTables tables(file.get(), shape, 1, settings);
     tables.write(0, target);
     tables.finish();

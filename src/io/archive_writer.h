@@ -27,6 +27,7 @@ struct ArchiveShape {
   std::size_t n_vertices = 0;  ///< template vertices (#V)
   std::size_t n_faces = 0;     ///< template faces (#F)
   std::size_t n_curves = 0;    ///< template curves (#C)
+  std::size_t n_anchors = 0;   ///< template anchors (#A)
 };
 
 /// The shape of `template_record`.

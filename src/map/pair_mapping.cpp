@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <optional>
@@ -196,11 +197,10 @@ std::vector<int> with_layout_neighbours(const std::vector<int>& anchors, const L
   return result;
 }
 
-}  // namespace
-
-PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
-                     const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
-                     const PairSettings& settings, const StageCallback& on_stage) {
+// map_pair on the anchors as given (no anchor released).
+PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
+                                const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
+                                const PairSettings& settings, const StageCallback& on_stage) {
   const auto stage = [&](const char* name) {
     if (on_stage) on_stage(name);
   };
@@ -308,6 +308,97 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
                                            faces, result.quality.flipped_faces);
   if (attempt.layout != &result.layout) result.layout = *attempt.layout;  // a copy, only when a later one won
   result.seconds.metrics = watch.lap();
+  result.seconds.total = total.lap();
+  return result;
+}
+
+// `set` without the anchor named `name`.
+AnchorSet without_anchor(const AnchorSet& set, const std::string& name) {
+  AnchorSet kept = set;
+  std::erase_if(kept.anchors, [&](const AnchorSpec& anchor) { return anchor.name == name; });
+  return kept;
+}
+
+double area_error(const PairMapping& mapping) { return std::abs(mapping.quality.area_ratio - 1.0); }
+
+// Whether a map with one anchor more released is kept: it folds less and covers the target's
+// area to 2%, or no worse than the map it replaces (a map that folds less by leaving part of
+// the target uncovered is not better).
+bool release_helps(const PairMapping& released, const PairMapping& current) {
+  constexpr double kAreaTolerance = 0.02;
+  return released.quality.flipped_faces.size() < current.quality.flipped_faces.size() &&
+         area_error(released) <= std::max(kAreaTolerance, area_error(current));
+}
+
+// The distance from the remesh's point at the template's landmark `name` to the target's.
+double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors,
+                     const Mesh& source, const Mesh& target, const Eigen::MatrixX3d& remesh_vertices) {
+  std::size_t k = 0;
+  while (all_anchors[0].anchors[k].name != name) ++k;
+  const SurfacePoint& on_template = all_anchors[0].anchors[k].input_point;
+  Eigen::Vector3d on_remesh = Eigen::Vector3d::Zero();
+  int corner = 0;
+  for (VertexHandle v : source.fv_range(source.face_handle(on_template.face)))
+    on_remesh += on_template.bary[corner++] * remesh_vertices.row(v.idx()).transpose();
+  return (on_remesh - position(target, all_anchors[1].anchors[k].input_point)).norm();
+}
+
+}  // namespace
+
+void PairSeconds::add_stages(const PairSeconds& other) {
+  anchors += other.anchors;
+  layout += other.layout;
+  optimize += other.optimize;
+  parameterize += other.parameterize;
+  relax += other.relax;
+  compose += other.compose;
+  untangle += other.untangle;
+  metrics += other.metrics;
+}
+
+PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
+                     const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
+                     const PairSettings& settings, const StageCallback& on_stage) {
+  Stopwatch total;
+  PairMapping result =
+      map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, on_stage);
+  if (settings.max_released_anchors <= 0 || result.quality.flipped_faces.empty()) return result;
+  const std::array<PlacedAnchors, 2> all_anchors = result.anchors;
+  AnchorSet kept_source = source_anchors;
+  AnchorSet kept_target = target_anchors;
+  std::vector<ReleasedAnchor> released;
+  PairSeconds seconds = result.seconds;
+  while (!result.quality.flipped_faces.empty() &&
+         static_cast<int>(released.size()) < settings.max_released_anchors &&
+         static_cast<int>(kept_source.anchors.size()) > kMinAnchors) {
+    bool helped = false;
+    const std::vector<AnchorFolds> candidates = result.folds_by_anchor;
+    for (const AnchorFolds& candidate : candidates) {
+      const AnchorSet fewer_source = without_anchor(kept_source, candidate.name);
+      const AnchorSet fewer_target = without_anchor(kept_target, candidate.name);
+      PairMapping trial;
+      try {
+        trial = map_through_anchors(source, fewer_source, target, fewer_target, curves, settings, on_stage);
+      } catch (const LayoutError&) {
+        continue;  // the anchors left cannot be laid out or parameterized: this anchor stays
+      } catch (const ParamError&) {
+        continue;
+      }
+      seconds.add_stages(trial.seconds);
+      if (!release_helps(trial, result)) continue;
+      released.push_back({candidate.name, candidate.folded_faces, 0.0});
+      kept_source = fewer_source;
+      kept_target = fewer_target;
+      result = std::move(trial);
+      helped = true;
+      break;
+    }
+    if (!helped) break;
+  }
+  for (ReleasedAnchor& anchor : released)
+    anchor.miss_distance = miss_distance(anchor.name, all_anchors, source, target, result.remesh_vertices);
+  result.released_anchors = std::move(released);
+  result.seconds = seconds;
   result.seconds.total = total.lap();
   return result;
 }

@@ -39,6 +39,10 @@ struct PairSettings {
   /// if that map folds too, a third time at the anchors near the folds alone; keep the map with
   /// the fewest folds (never without untangling: then Gamma's own folds are asked for).
   bool retry_keeping_corners = true;
+  /// For scans whose landmarks disagree with the template's: when the remesh still folds,
+  /// release (map without) an anchor near the folds and map again, up to this many anchors;
+  /// 0 keeps every anchor. See map_pair.
+  int max_released_anchors = 0;
   /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
   bool untangle = true;
   UntangleSettings untangling;  ///< options of that step
@@ -55,6 +59,19 @@ struct PairSeconds {
   double untangle = 0.0;      ///< untangling the remesh (inside compose)
   double metrics = 0.0;       ///< distortion and remesh quality
   double total = 0.0;         ///< all of map_pair
+
+  /// Add another map's stage seconds (an anchor release maps the pair again); not `total`.
+  void add_stages(const PairSeconds& other);
+};
+
+/// An anchor the map was released from (PairSettings::max_released_anchors).
+struct ReleasedAnchor {
+  std::string name;
+  int folded_faces = 0;  ///< folded remesh faces nearest to it when it was released
+  /// How far the map lands from the target's landmark: the distance (target units) from the
+  /// remesh's point at the template's landmark (its face's vertex images, by its barycentrics)
+  /// to the target's landmark. A kept anchor is mapped onto its landmark exactly.
+  double miss_distance = 0.0;
 };
 
 /// One template curve carried onto the target.
@@ -95,7 +112,12 @@ struct PairMapping {
   DomainOptimizationResult optimization;  ///< what the base-domain optimization did (swaps, merges, seconds)
   int layouts_built = 1;  ///< base domains built and mapped (PairSettings::retry_keeping_corners): 1 to 3
   int layout_kept = 1;    ///< which of them the map is on (1: the first)
-  std::array<PlacedAnchors, 2> anchors;  ///< template and target anchors as placed (snap distances, warnings)
+  /// The anchors the map no longer passes through, in the order they were released; empty
+  /// unless PairSettings::max_released_anchors > 0 and the map with every anchor folds.
+  std::vector<ReleasedAnchor> released_anchors;
+  /// template and target anchors as placed (snap distances, warnings); released anchors are not
+  /// among them
+  std::array<PlacedAnchors, 2> anchors;
   std::array<int, 2> fallback_polygons{};  ///< patches per side whose degenerate LPBD was replaced
   std::array<int, 2>
       inverted_triangles{};  ///< parameterization triangles per side with non-positive area (0: bijective)
@@ -110,6 +132,13 @@ using StageCallback = std::function<void(const std::string& stage)>;
 /// Map template `source` onto target `target`. The meshes are the loaded input meshes
 /// (io/mesh_loader.h: provenance initialised, outward orientation); anchor sets are matched by
 /// name (the target's reordered to the template's), then placed on refined copies.
+///
+/// With settings.max_released_anchors > 0 and folds left, anchors are released one at a time:
+/// the anchors folds_by_anchor names are tried in its order (the most folds first), and the
+/// first whose release gives a map with fewer folds and an area ratio within 2% of 1 (or no
+/// farther from 1 than before) is released; then again from the new map. It stops when the
+/// map has no fold, when no named anchor's release helps, or at the limit. A release whose
+/// layout cannot be built is passed over.
 /// \throw InputError for anchors that do not match or cannot be placed
 /// \throw LayoutError when the meshes cannot be laid out (genus, components)
 /// \throw ParamError when a patch cannot be parameterized

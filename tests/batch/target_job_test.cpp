@@ -135,5 +135,48 @@ TEST(TargetJob, CorrespondenceIsInTheTargetFilesCornerOrder) {
   }
 }
 
+// The template against itself with its two nipple landmarks swapped on the target, as a
+// misplaced landmark on a scan: the map through both folds (measured 5 folds, 3 nearest the
+// right nipple). With --release-anchors the right nipple is released, nothing folds, and the
+// archive record names it in anchor_miss with the distance from the remesh's right nipple to
+// the target's (swapped) right-nipple landmark; every kept anchor stays a fixed point.
+TEST(TargetJob, ReleasedAnchorIsRecordedWithItsMissDistance) {
+  const path dir = test::fresh_temp_dir("job_swapped_landmarks");
+  std::filesystem::copy_file(test::data_path("human_man.obj"), dir / "swapped.obj");
+  std::string anchors = test::read_file(test::data_path("human.anchors.json"));
+  const std::string left = R"("LEFT_NIPPLE", "vertex": 3042)";
+  const std::string right = R"("RIGHT_NIPPLE", "vertex": 6489)";
+  ASSERT_NE(anchors.find(left), std::string::npos);
+  ASSERT_NE(anchors.find(right), std::string::npos);
+  anchors.replace(anchors.find(left), left.size(), R"("LEFT_NIPPLE", "vertex": 6489)");
+  anchors.replace(anchors.find(right), right.size(), R"("RIGHT_NIPPLE", "vertex": 3042)");
+  test::write_file(dir / "swapped.anchors.json", anchors);
+  PairSettings releasing;
+  releasing.max_released_anchors = 2;
+  const TargetRecord record = run_target(man(), discover_targets(dir).at(0), releasing);
+  ASSERT_TRUE(record.ok) << record.error;
+
+  EXPECT_EQ(record.metrics.released_anchors, 1);
+  EXPECT_EQ(record.metrics.flipped_faces, 0);
+  const std::vector<std::string>& names = man().record.anchor_names;
+  ASSERT_EQ(record.anchor_miss.size(), static_cast<Eigen::Index>(names.size()));
+  const Eigen::MatrixX3d& vertices = man().record.vertices;
+  for (std::size_t a = 0; a < names.size(); ++a) {
+    const auto at = static_cast<Eigen::Index>(a);
+    const int vertex = man().record.anchor_vertices[a];
+    if (names[a] == "RIGHT_NIPPLE") {
+      // The template's right nipple is vertex 6489; the target's landmark is at vertex 3042.
+      EXPECT_EQ(vertex, 6489);
+      EXPECT_NEAR(record.anchor_miss[at], (record.remesh_vertices.row(6489) - vertices.row(3042)).norm(),
+                  1e-12);
+      EXPECT_GT(record.anchor_miss[at], 0.05);  // measured 0.29 (the nipples are 0.20 apart)
+    } else {
+      EXPECT_TRUE(std::isnan(record.anchor_miss[at])) << names[a];
+      const int landmark = names[a] == "LEFT_NIPPLE" ? 6489 : vertex;
+      EXPECT_LT((record.remesh_vertices.row(vertex) - vertices.row(landmark)).norm(), 1e-9) << names[a];
+    }
+  }
+}
+
 }  // namespace
 }  // namespace xparam

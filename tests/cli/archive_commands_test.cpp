@@ -72,9 +72,11 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
   r.face_patch = Eigen::VectorXi::LinSpaced(8, 0, 7).unaryExpr([k](int f) { return (f + k) % 4; });
   r.face_l2_stretch = Eigen::VectorXd::Constant(8, 1.0 + k);
   r.face_angle_distortion = Eigen::VectorXd::Constant(8, 0.5 * k);
+  r.anchor_miss = Eigen::VectorXd::Constant(3, std::numeric_limits<double>::quiet_NaN());
   r.metrics.e_l2 = 1.0 + k / 7.0;
   r.metrics.e_ang = 0.25 * k;
   r.metrics.flipped_faces = k;
+  r.metrics.released_anchors = k % 2;
   r.metrics.gt_error = k == 2 ? std::numeric_limits<double>::quiet_NaN() : 0.01 * k;
   r.seconds.fill(0.5 * k);
   return r;
@@ -144,6 +146,8 @@ TEST(InspectCommand, JsonCarriesTheExactValues) {
   EXPECT_EQ(j["targets"][0]["name"], "alice");
   EXPECT_EQ(j["targets"][1]["metrics"]["E_L2"].get<double>(), 1.0 + 1 / 7.0);  // bob, bit-exact
   EXPECT_TRUE(j["targets"][0]["metrics"]["gt_error"].is_null());               // alice has no ground truth
+  EXPECT_EQ(j["targets"][1]["metrics"]["released_anchors"], 1);                // bob, k = 1
+  EXPECT_EQ(j["targets"][2]["metrics"]["released_anchors"], -1);               // carl failed
   EXPECT_EQ(j["targets"][2]["status"], "failed");
   EXPECT_EQ(j["targets"][2]["error"], "carl.ply: genus 1, the template has genus 0");
   EXPECT_EQ(j["targets"][3]["seconds"]["total"].get<double>(), 1.5);

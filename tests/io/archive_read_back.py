@@ -19,7 +19,8 @@ import h5py
 import numpy as np
 
 STAGES = ["load", "anchors", "layout", "optimize", "parameterize", "compose", "outputs", "total"]
-METRICS = ["E_L2", "E_ang", "stretch_max_sv", "flipped_faces", "area_ratio", "gt_error", "swaps", "merges"]
+METRICS = ["E_L2", "E_ang", "stretch_max_sv", "flipped_faces", "area_ratio", "gt_error", "swaps", "merges",
+           "released_anchors"]
 # Wall-clock seconds are the one dataset that differs between identical runs.
 NON_DETERMINISTIC = {"/targets/timings"}
 
@@ -46,7 +47,7 @@ def check_layout(path):
     """Opens the archive, reads every dataset, checks shapes and invariants; returns the file."""
     f = h5py.File(path, "r")
     require(attr_text(f, "format") == "xparam-archive", "format attribute")
-    require(int(f.attrs["schema_version"]) == 1, "schema_version")
+    require(int(f.attrs["schema_version"]) == 2, "schema_version")
     for name in ("xparam_version", "git_revision", "options_json"):
         attr_text(f, name)
     json.loads(attr_text(f, "options_json"))
@@ -91,6 +92,13 @@ def check_layout(path):
             require(np.all(failed == -1), f"{name}: failed rows not -1")
     corr = t["corr_face"][()][ok]
     require(corr.size == 0 or corr.min() >= 0, "corr_face of ok targets")
+    n_a = f["template/anchor_vertices"].shape[0]
+    anchor_miss = t["anchor_miss"][()]
+    require(anchor_miss.shape == (n, n_a), "anchor_miss shape")
+    require(np.all(np.isnan(anchor_miss[~ok])), "anchor_miss: failed rows not NaN")
+    released = t["metrics"]["released_anchors"][ok]
+    require(np.array_equal(np.sum(~np.isnan(anchor_miss[ok]), axis=1), released),
+            "anchor_miss: one distance per released anchor")
     metrics = t["metrics"]
     require(metrics.shape == (n,) and list(metrics.dtype.names) == METRICS, "metrics table columns")
     timings = t["timings"]
@@ -189,6 +197,7 @@ def check_values(f, expected):
         require(list(t["face_patch"][i]) == e["face_patch"], where + "face_patch")
         require(close(t["face_l2_stretch"][i], e["face_l2_stretch"]), where + "face_l2_stretch")
         require(close(t["face_angle_distortion"][i], e["face_angle_distortion"]), where + "face_angle_distortion")
+        require(close(t["anchor_miss"][i], nan_of(e["anchor_miss"])), where + "anchor_miss")
         for c, curve in enumerate(e["curves"]):
             rows = slice(curve_offsets[i, c], curve_offsets[i, c + 1])
             require(list(t["curves/face"][rows]) == curve["face"], where + f"curve {c} faces")

@@ -96,6 +96,9 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
     r.face_l2_stretch(f) = 1.0 + 0.01 * static_cast<double>(f) + k;
     r.face_angle_distortion(f) = 0.5 * static_cast<double>(f) - k;
   }
+  // Target k released anchor k % #A when k is odd.
+  r.anchor_miss = Eigen::VectorXd::Constant(static_cast<Eigen::Index>(t.anchor_names.size()), kNaN);
+  if (k % 2 == 1) r.anchor_miss[k % r.anchor_miss.size()] = 0.01 * k;
   for (std::size_t c = 0; c < t.curves.size(); ++c) {
     TransferredCurve curve;
     const int points = static_cast<int>((c + static_cast<std::size_t>(k)) % 4);
@@ -116,6 +119,7 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
   r.metrics.gt_error = k % 2 ? kNaN : 0.1 * k;
   r.metrics.swaps = 2 * k;
   r.metrics.merges = k % 3;
+  r.metrics.released_anchors = k % 2;
   for (std::size_t s = 0; s < r.seconds.size(); ++s) r.seconds[s] = 0.1 * static_cast<double>(s) + k;
   return r;
 }
@@ -218,7 +222,8 @@ nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
                           {"area_ratio", r.metrics.area_ratio},
                           {"gt_error", r.metrics.gt_error},
                           {"swaps", r.metrics.swaps},
-                          {"merges", r.metrics.merges}}},
+                          {"merges", r.metrics.merges},
+                          {"released_anchors", r.metrics.released_anchors}}},
                         {"seconds", std::vector<double>(r.seconds.begin(), r.seconds.end())}};
     if (r.ok) {
       j["remesh_vertices"] = matrix_json(r.remesh_vertices);
@@ -227,6 +232,7 @@ nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
       j["face_patch"] = vector_of(r.face_patch);
       j["face_l2_stretch"] = vector_of(r.face_l2_stretch);
       j["face_angle_distortion"] = vector_of(r.face_angle_distortion);
+      j["anchor_miss"] = vector_of(r.anchor_miss);
       for (const TransferredCurve& c : r.curves)
         j["curves"].push_back({{"face", c.face}, {"bary", matrix_json(c.bary)}, {"xyz", matrix_json(c.xyz)}});
     }

@@ -44,6 +44,7 @@ inline void expect_same_results(const TargetRecord& a, const TargetRecord& b) {
   EXPECT_TRUE(same_bits(a.face_patch, b.face_patch));
   EXPECT_TRUE(same_bits(a.face_l2_stretch, b.face_l2_stretch));
   EXPECT_TRUE(same_bits(a.face_angle_distortion, b.face_angle_distortion));
+  EXPECT_TRUE(same_bits(a.anchor_miss, b.anchor_miss));
   ASSERT_EQ(a.curves.size(), b.curves.size());
   for (std::size_t c = 0; c < a.curves.size(); ++c) {
     EXPECT_EQ(a.curves[c].face, b.curves[c].face);
@@ -58,6 +59,7 @@ inline void expect_same_results(const TargetRecord& a, const TargetRecord& b) {
   EXPECT_TRUE(same_bits(a.metrics.gt_error, b.metrics.gt_error));
   EXPECT_EQ(a.metrics.swaps, b.metrics.swaps);
   EXPECT_EQ(a.metrics.merges, b.metrics.merges);
+  EXPECT_EQ(a.metrics.released_anchors, b.metrics.released_anchors);
 }
 
 }  // namespace xparam::test
