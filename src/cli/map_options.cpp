@@ -45,7 +45,7 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
           "without an anchor near the folds, one at a time, up to N anchors, keeping each release that "
           "folds less with the area ratio within 2%; the released anchors and how far the map lands "
           "from them are reported (default 0: every anchor is kept)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1000));
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");

@@ -376,6 +376,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     for (const AnchorFolds& candidate : candidates) {
       const AnchorSet fewer_source = without_anchor(kept_source, candidate.name);
       const AnchorSet fewer_target = without_anchor(kept_target, candidate.name);
+      if (on_stage) on_stage("mapping again without anchor \"" + candidate.name + "\"");
       PairMapping trial;
       try {
         trial = map_through_anchors(source, fewer_source, target, fewer_target, curves, settings, on_stage);

@@ -167,5 +167,13 @@ TEST(PairCommand, AFailingStageExitsThreeAndWritesNoResults) {
   EXPECT_FALSE(fs::exists(dir / "out" / "correspondence.csv"));
 }
 
+TEST(PairCommand, ANegativeReleaseLimitIsRefusedBeforeMapping) {
+  const fs::path dir = test::fresh_temp_dir("pair_command_release_limit");
+  std::string errors;
+  EXPECT_NE(test::run_xparam(pair_arguments(dir / "out", "--release-anchors -1"), dir, errors), 0);
+  EXPECT_NE(errors.find("--release-anchors"), std::string::npos) << errors;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 }  // namespace
 }  // namespace xparam
