@@ -151,6 +151,11 @@ std::vector<PairSpec> pair_list() {
        {}},
       shrec19_pair("SHREC'19 SMPL/1", "1", caesar),
       shrec19_pair("SHREC'19 SMPL/17 (CAESAR scan)", "17", caesar),
+      // The other SHREC'19 shapes the pipeline takes (closed, one component, manifold, genus 0).
+      shrec19_pair("SHREC'19 SMPL/2", "2", caesar),
+      shrec19_pair("SHREC'19 SMPL/18 (Female Base Mesh)", "18", caesar),
+      shrec19_pair("SHREC'19 SMPL/26", "26", caesar),
+      shrec19_pair("SHREC'19 SMPL/41 (FAUST tr_reg_068)", "41", caesar),
       {"hand plain/vulcan",
        "landmark_pairs_schmidt2023/hand/hand_plain.obj",
        "landmark_pairs_schmidt2023/hand/hand_vulcan.obj",
@@ -218,7 +223,8 @@ std::vector<int> identity(int n) {
 // The released anchors' names, or "-".
 std::string released_names(const PairMapping& map) {
   std::string names;
-  for (const ReleasedAnchor& anchor : map.released_anchors) names += (names.empty() ? "" : ", ") + anchor.name;
+  for (const ReleasedAnchor& anchor : map.released_anchors)
+    names += (names.empty() ? "" : ", ") + anchor.name;
   return names.empty() ? "-" : names;
 }
 
