@@ -95,6 +95,14 @@ std::string clock_text(double seconds) {
   return text;
 }
 
+// " (N anchors released)" for a target mapped without some of its anchors (--release-anchors).
+std::string released_text(const TargetOutcome& outcome) {
+  const int released = outcome.metrics.released_anchors;
+  if (released <= 0) return "";
+  return " (" + std::to_string(released) + (released == 1 ? " anchor" : " anchors") +
+         " released: see anchor_miss in the archive)";
+}
+
 // Progress on stderr: a live line on a terminal, one plain line per target otherwise.
 class ProgressPrinter {
  public:
@@ -106,7 +114,7 @@ class ProgressPrinter {
     counter << "[" << p.done << "/" << p.total << "]";
     if (!live_) {
       std::cerr << counter.str() << " " << (last.ok ? "ok " : "FAILED ") << last.name;
-      if (last.ok) std::cerr << " " << last.seconds << " s";
+      if (last.ok) std::cerr << " " << last.seconds << " s" << released_text(last);
       else std::cerr << ": " << last.error;
       std::cerr << std::endl;
       return;
@@ -115,6 +123,8 @@ class ProgressPrinter {
     const double eta = rate > 0 ? static_cast<double>(p.total - p.done) / rate : 0.0;
     // A failure gets its own permanent line above the live one.
     if (!last.ok) std::cerr << "\r\033[KFAILED " << last.name << ": " << last.error << "\n";
+    if (last.ok && last.metrics.released_anchors > 0)
+      std::cerr << "\r\033[K" << last.name << released_text(last) << "\n";
     char rate_text[32];
     std::snprintf(rate_text, sizeof(rate_text), "%.2f", rate);
     std::cerr << "\r\033[K" << counter.str() << " " << rate_text << " targets/s, ETA " << clock_text(eta) << ", "
