@@ -130,24 +130,37 @@ TEST(ToscaHorseWolf, SecondLayoutUnfoldsTheEar) {
   EXPECT_EQ(map.inverted_triangles[1], 0);
 }
 
-// The CAESAR landmarks on the SMPL template and, carried by a SHREC'19 shape's registration to
-// SMPL (`truth[i]`: the shape's vertex of SMPL vertex i), on the shape. A landmark the
+// A SHREC'19 shape against the SMPL template (shape 44): the meshes, the shape's registration
+// to SMPL (`truth[i]`: the shape's vertex of SMPL vertex i, also the ground truth), and the
+// CAESAR landmarks on SMPL and, carried by the registration, on the shape. A landmark the
 // registration puts on the vertex of an earlier one is left out.
-std::array<AnchorSet, 2> caesar_landmarks_through(const std::vector<int>& truth,
-                                                  const std::filesystem::path& data) {
+struct ShrecPair {
+  LoadedMesh source;
+  LoadedMesh target;
+  std::vector<int> truth;
+  AnchorSet source_anchors;
+  AnchorSet target_anchors;
+};
+
+ShrecPair load_shrec_pair(const std::filesystem::path& data, const std::string& shape) {
+  const std::filesystem::path dir = data / "shrec19_connectivity";
+  ShrecPair pair{load_mesh(dir / "44.off"),
+                 load_mesh(dir / (shape + ".off")),
+                 read_vertex_ids(dir / (shape + ".smpl_matches.txt")),
+                 {},
+                 {}};
   const AnchorSet landmarks = read_anchors(data / "faust_landmarks/smpl_caesar_landmark_indices.json");
-  std::array<AnchorSet, 2> sets = {landmarks, landmarks};
-  sets[0].anchors.clear();
-  sets[1].anchors.clear();
+  pair.source_anchors.source = landmarks.source;
+  pair.target_anchors.source = landmarks.source;
   std::set<int> taken;
   for (const AnchorSpec& anchor : landmarks.anchors) {
-    const int on_target = truth.at(std::get<AnchorVertex>(anchor.location).index);
+    const int on_target = pair.truth.at(std::get<AnchorVertex>(anchor.location).index);
     if (!taken.insert(on_target).second) continue;
-    sets[0].anchors.push_back(anchor);
-    sets[1].anchors.push_back(anchor);
-    sets[1].anchors.back().location = AnchorVertex{on_target};
+    pair.source_anchors.anchors.push_back(anchor);
+    pair.target_anchors.anchors.push_back(anchor);
+    pair.target_anchors.anchors.back().location = AnchorVertex{on_target};
   }
-  return sets;
+  return pair;
 }
 
 // SHREC'19 shape 1 (SHREC'07 human 1, 4706 vertices of its own connectivity) against the SMPL
@@ -160,11 +173,8 @@ std::array<AnchorSet, 2> caesar_landmarks_through(const std::vector<int>& truth,
 TEST(ShrecHuman, CornersKeptOpenUnfoldTheHand) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
-  const std::filesystem::path dir = data / "shrec19_connectivity";
-  const LoadedMesh source = load_mesh(dir / "44.off");
-  const LoadedMesh target = load_mesh(dir / "1.off");
-  const std::vector<int> truth = read_vertex_ids(dir / "1.smpl_matches.txt");
-  const auto [source_anchors, target_anchors] = caesar_landmarks_through(truth, data);
+  const ShrecPair shrec = load_shrec_pair(data, "1");
+  const auto& [source, target, truth, source_anchors, target_anchors] = shrec;
   ASSERT_EQ(source_anchors.anchors.size(), 72u);
   PairSettings first_layout_only;
   first_layout_only.retry_keeping_corners = false;
@@ -200,11 +210,8 @@ TEST(ShrecHuman, CornersKeptOpenUnfoldTheHand) {
 TEST(ShrecHuman, ReleasingTheMisplacedKnuckleUnfoldsTheScan) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
-  const std::filesystem::path dir = data / "shrec19_connectivity";
-  const LoadedMesh source = load_mesh(dir / "44.off");
-  const LoadedMesh target = load_mesh(dir / "17.off");
-  const std::vector<int> truth = read_vertex_ids(dir / "17.smpl_matches.txt");
-  const auto [source_anchors, target_anchors] = caesar_landmarks_through(truth, data);
+  const ShrecPair shrec = load_shrec_pair(data, "17");
+  const auto& [source, target, truth, source_anchors, target_anchors] = shrec;
   PairSettings releasing;
   releasing.max_released_anchors = 3;
   const PairMapping map = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {}, releasing);
