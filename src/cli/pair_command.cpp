@@ -8,6 +8,7 @@
 #include "io/mesh_loader.h"
 #include "map/pair_mapping.h"
 
+#include <cmath>
 #include <iostream>
 #include <memory>
 
@@ -24,6 +25,21 @@ struct PairOptions {
   bool quiet = false;
   PairSettings map;  ///< --optimize, --merge, --no-stretch, --untangle
 };
+
+// "4/11/345": whole degrees, slash-separated.
+std::string degree_list(const std::vector<double>& degrees) {
+  std::string list;
+  for (double d : degrees) list += (list.empty() ? "" : "/") + std::to_string(std::lround(d));
+  return list;
+}
+
+// Why folds gather at an anchor whose corners disagree (map/corner_report.h).
+void print_mismatch(const CornerMismatch& corners) {
+  std::cout << "corners at \"" << corners.name << "\" disagree: " << degree_list(corners.template_degrees)
+            << " degrees on the template, " << degree_list(corners.target_degrees)
+            << " on the target (a different patch wraps round it on each mesh); moving or releasing "
+               "that landmark may help\n";
+}
 
 void run_pair(const PairOptions& options) {
   auto progress = [&](const std::string& stage) {
@@ -57,6 +73,11 @@ void run_pair(const PairOptions& options) {
     std::cout << " (" << most.folded_faces << " nearest \"" << most.name << "\")";
   }
   std::cout << "  area ratio " << mapping.quality.area_ratio << "  (" << mapping.seconds.total << " s)\n";
+  for (const AnchorFolds& folds : mapping.folds_by_anchor) {
+    for (const CornerMismatch& corners : mapping.mismatched_corners) {
+      if (corners.anchor == folds.anchor) print_mismatch(corners);
+    }
+  }
   for (const ReleasedAnchor& anchor : mapping.released_anchors)
     std::cout << "released anchor \"" << anchor.name << "\" (" << anchor.folded_faces
               << " folded faces near it); the map lands " << anchor.miss_distance << " from its landmark\n";

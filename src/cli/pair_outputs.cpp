@@ -70,6 +70,15 @@ nlohmann::json folds_json(const std::vector<AnchorFolds>& folds) {
   return list;
 }
 
+nlohmann::json corners_json(const std::vector<CornerMismatch>& mismatches) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const CornerMismatch& anchor : mismatches)
+    list.push_back({{"anchor", anchor.name},
+                    {"template_degrees", anchor.template_degrees},
+                    {"target_degrees", anchor.target_degrees}});
+  return list;
+}
+
 nlohmann::json released_json(const std::vector<ReleasedAnchor>& released) {
   nlohmann::json list = nlohmann::json::array();
   for (const ReleasedAnchor& anchor : released)
@@ -91,6 +100,7 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
       {"flipped_faces", mapping.quality.flipped_faces.size()},
       {"flipped_face_ids", mapping.quality.flipped_faces},
       {"folds_by_anchor", folds_json(mapping.folds_by_anchor)},
+      {"mismatched_corners", corners_json(mapping.mismatched_corners)},
       {"area_ratio", number(mapping.quality.area_ratio)},
       {"anchors", layout.n_anchors},
       {"layout_edges", layout.edges.size()},

@@ -306,6 +306,7 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
   result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
   result.folds_by_anchor = folds_by_anchor(layout.sides[0].mesh, layout.sides[0].anchor_vertices, names,
                                            faces, result.quality.flipped_faces);
+  result.mismatched_corners = mismatched_corners(layout, names);
   if (attempt.layout != &result.layout) result.layout = *attempt.layout;  // a copy, only when a later one won
   result.seconds.metrics = watch.lap();
   result.seconds.total = total.lap();

@@ -12,6 +12,7 @@
 #include "core/surface_point.h"
 #include "domain/base_domain_optimization.h"
 #include "layout/consistent_layout.h"
+#include "map/corner_report.h"
 #include "map/cross_map.h"
 #include "map/fold_report.h"
 #include "map/remesh_quality.h"
@@ -105,6 +106,9 @@ struct PairMapping {
   RemeshQualityResult quality;       ///< flipped faces and area ratio of the remesh on the target
   /// The flipped faces by nearest template anchor (map/fold_report.h).
   std::vector<AnchorFolds> folds_by_anchor;
+  /// Anchors whose layout corners take very different shares of the turn about them on the two
+  /// meshes (map/corner_report.h): where folds that remain usually gather.
+  std::vector<CornerMismatch> mismatched_corners;
   RelaxationSummary relaxation;      ///< how much relaxing the patch maps lowered their energy
   UntangleSummary untangling;        ///< how far the remesh's vertices were slid to unfold it
   std::vector<MappedCurve> curves;   ///< the template's feature curves on the target, in input order

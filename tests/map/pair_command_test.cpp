@@ -92,6 +92,7 @@ TEST(PairCommand, MetricsReportTheMapTheUntanglingAndTheStages) {
   EXPECT_EQ(metrics["layouts"]["built"], 1);  // no fold on the first layout: no later one
   EXPECT_EQ(metrics["layouts"]["kept"], 1);
   EXPECT_EQ(metrics["released_anchors"], nlohmann::json::array());  // no fold, and releasing is off
+  EXPECT_TRUE(metrics["mismatched_corners"].is_array());
   EXPECT_EQ(metrics["relaxation"]["enabled"], true);
   EXPECT_LE(metrics["relaxation"]["energy_after"].get<double>(),
             metrics["relaxation"]["energy_before"].get<double>());
