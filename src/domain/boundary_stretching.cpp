@@ -138,18 +138,6 @@ CurveStretch stretch_edge(Layout& layout, int e, const StretchSettings& settings
 
 namespace {
 
-// Surface angle of every corner of every patch on each side (corner_surface_angles).
-using CornerAngles = std::array<std::vector<std::vector<double>>, 2>;
-
-CornerAngles corner_angles(const Layout& layout) {
-  CornerAngles angles;
-  for (int side = 0; side < 2; ++side) {
-    for (int p = 0; p < static_cast<int>(layout.patches.size()); ++p)
-      angles[side].push_back(corner_surface_angles(layout, side, p));
-  }
-  return angles;
-}
-
 bool collapsed(double a, double b, const StretchSettings& settings) {
   const double smaller = std::min(a, b);
   return smaller < settings.collapsed_angle && smaller < settings.collapsed_ratio * std::max(a, b);

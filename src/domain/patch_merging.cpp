@@ -84,6 +84,15 @@ std::vector<double> corner_surface_angles(const Layout& layout, int side, int p)
   return angles;
 }
 
+CornerAngles corner_angles(const Layout& layout) {
+  CornerAngles angles;
+  for (int side = 0; side < 2; ++side) {
+    for (int p = 0; p < static_cast<int>(layout.patches.size()); ++p)
+      angles[side].push_back(corner_surface_angles(layout, side, p));
+  }
+  return angles;
+}
+
 void merge_patches(Layout& layout, const std::vector<int>& edges) {
   const int n_edges = static_cast<int>(layout.edges.size());
   const int n_patches = static_cast<int>(layout.patches.size());

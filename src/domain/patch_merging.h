@@ -6,6 +6,7 @@
 
 #include "layout/layout.h"
 
+#include <array>
 #include <vector>
 
 namespace xparam {
@@ -16,6 +17,13 @@ namespace xparam {
 /// layout halfedge starts (the LPBD corner convention of domain/lpbd.h).
 /// \pre face property "xparam:patch" set on `side`
 std::vector<double> corner_surface_angles(const Layout& layout, int side, int p);
+
+/// corner_surface_angles of every patch on each side: [side][patch][corner].
+using CornerAngles = std::array<std::vector<std::vector<double>>, 2>;
+
+/// Surface angles of every corner of every patch on both sides.
+/// \pre face property "xparam:patch" set on both sides
+CornerAngles corner_angles(const Layout& layout);
 
 /// Remove the layout edges `edges` on both sides (each shared by two triangular patches, no
 /// two sharing a patch), merging each pair of patches into one quad. For edge e joining

@@ -15,13 +15,14 @@ std::vector<CornerMismatch> mismatched_corners(const Layout& layout, const std::
     throw ParamError("mismatched_corners: " + std::to_string(names.size()) + " names for " +
                      std::to_string(layout.n_anchors) + " anchors");
   }
-  // Surface angle of every corner (named by its layout halfedge) on each side.
+  // Surface angle of every corner, by the layout halfedge that names it, on each side.
+  const CornerAngles by_patch = corner_angles(layout);
   std::array<std::vector<double>, 2> angle;
   for (int side = 0; side < 2; ++side) {
     angle[side].assign(2 * layout.edges.size(), 0.0);
     for (std::size_t p = 0; p < layout.patches.size(); ++p) {
-      const std::vector<double> corners = corner_surface_angles(layout, side, static_cast<int>(p));
-      for (std::size_t i = 0; i < corners.size(); ++i) angle[side][layout.patches[p][i]] = corners[i];
+      for (std::size_t i = 0; i < layout.patches[p].size(); ++i)
+        angle[side][layout.patches[p][i]] = by_patch[side][p][i];
     }
   }
   std::vector<CornerMismatch> result;

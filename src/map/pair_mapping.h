@@ -107,7 +107,7 @@ struct PairMapping {
   /// The flipped faces by nearest template anchor (map/fold_report.h).
   std::vector<AnchorFolds> folds_by_anchor;
   /// Anchors whose layout corners take very different shares of the turn about them on the two
-  /// meshes (map/corner_report.h): where folds that remain usually gather.
+  /// meshes (map/corner_report.h): an explanation for folds near them, not a prediction.
   std::vector<CornerMismatch> mismatched_corners;
   RelaxationSummary relaxation;      ///< how much relaxing the patch maps lowered their energy
   UntangleSummary untangling;        ///< how far the remesh's vertices were slid to unfold it
