@@ -119,6 +119,7 @@ std::string batch_options_json(const PairSettings& settings) {
   options["optimization"]["keep_corners"] = settings.optimization.stretching.keep_corners;
   options["relax"] = settings.cross_map.relax;
   options["second_layout"] = settings.retry_keeping_corners;
+  options["tip_anchors"] = settings.tip_anchors;
   options["untangle"] = settings.untangle;
   options["release_anchors"] = settings.max_released_anchors;
   return options.dump();

@@ -176,7 +176,8 @@ struct Configuration {
 std::vector<Configuration> configurations() {
   std::vector<Configuration> list;
   PairSettings s;
-  s.retry_keeping_corners = false;  // the paper's configurations each build one layout
+  s.retry_keeping_corners = false;  // the paper's configurations each build one layout,
+  s.tip_anchors = false;            // on the anchors given
   s.optimization.stretch = false;
   s.optimization.metric = SwapMetric::none;
   s.optimization.merge = false;
@@ -194,6 +195,7 @@ std::vector<Configuration> configurations() {
   s.optimization.merge = true;
   PairSettings by_default = s;
   by_default.retry_keeping_corners = true;
+  by_default.tip_anchors = true;
   list.push_back({"Balanced + merging", by_default});
   list.push_back({"Balanced + merging, first layout only", s});
   PairSettings corners_kept = s;

@@ -38,6 +38,11 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "When the remesh still folds, build the base domain again with corners kept (as --keep-corners) "
       "at the anchors near the folds and their neighbours, then, if it folds too, at the anchors near "
       "the folds alone, and keep the map with the fewest folds (default on)");
+  command.add_flag(
+      "--tip-anchors,!--no-tip-anchors", settings.tip_anchors,
+      "When the remesh still folds next to anchors whose layout corners disagree between the meshes "
+      "(a different patch wraps round a tip on each), map again through a helper anchor behind each "
+      "such tip on both meshes, and keep that map when it folds less (default on)");
   command
       .add_option(
           "--release-anchors", settings.max_released_anchors,

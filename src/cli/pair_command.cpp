@@ -78,6 +78,11 @@ void run_pair(const PairOptions& options) {
       if (corners.anchor == folds.anchor) print_mismatch(corners);
     }
   }
+  if (!mapping.tip_anchors.empty()) {
+    std::cout << "mapped through helper anchors behind";
+    for (const TipAnchor& helper : mapping.tip_anchors) std::cout << " \"" << helper.tip << "\"";
+    std::cout << " (the corners there disagreed; see tip_anchors in metrics.json)\n";
+  }
   for (const ReleasedAnchor& anchor : mapping.released_anchors)
     std::cout << "released anchor \"" << anchor.name << "\" (" << anchor.folded_faces
               << " folded faces near it); the map lands " << anchor.miss_distance << " from its landmark\n";

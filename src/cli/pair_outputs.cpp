@@ -88,6 +88,21 @@ nlohmann::json released_json(const std::vector<ReleasedAnchor>& released) {
   return list;
 }
 
+nlohmann::json helpers_json(const std::vector<TipAnchor>& helpers, const LoadedMesh& source,
+                            const LoadedMesh& target) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const TipAnchor& helper : helpers) {
+    const Eigen::Vector3d on_template =
+        position(source.mesh, std::get<SurfacePoint>(helper.specs[0].location));
+    const Eigen::Vector3d on_target = position(target.mesh, std::get<SurfacePoint>(helper.specs[1].location));
+    list.push_back({{"anchor", helper.specs[0].name},
+                    {"behind", helper.tip},
+                    {"template_position", {on_template.x(), on_template.y(), on_template.z()}},
+                    {"target_position", {on_target.x(), on_target.y(), on_target.z()}}});
+  }
+  return list;
+}
+
 nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping) {
   const Layout& layout = mapping.layout.layout;
   nlohmann::json metrics = {
@@ -110,6 +125,7 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
       {"inverted_parameter_triangles", {mapping.inverted_triangles[0], mapping.inverted_triangles[1]}},
       {"optimization", optimization_json(mapping.optimization)},
       {"layouts", {{"built", mapping.layouts_built}, {"kept", mapping.layout_kept}}},
+      {"tip_anchors", helpers_json(mapping.tip_anchors, source, target)},
       {"released_anchors", released_json(mapping.released_anchors)},
       {"relaxation",
        {{"enabled", mapping.settings.cross_map.relax},

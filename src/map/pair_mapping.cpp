@@ -322,13 +322,29 @@ AnchorSet without_anchor(const AnchorSet& set, const std::string& name) {
 
 double area_error(const PairMapping& mapping) { return std::abs(mapping.quality.area_ratio - 1.0); }
 
-// Whether a map with one anchor more released is kept: it folds less and covers the target's
-// area to 2%, or no worse than the map it replaces (a map that folds less by leaving part of
-// the target uncovered is not better).
-bool release_helps(const PairMapping& released, const PairMapping& current) {
+// Whether a map on other anchors (helpers added, or one more released) replaces the current
+// one: it folds less, collapses no more template faces, and covers the target's area to 2% or
+// no worse than the current map (a map that folds less by collapsing faces or by leaving part
+// of the target uncovered is not better).
+bool folds_less(const PairMapping& other, const PairMapping& current) {
   constexpr double kAreaTolerance = 0.02;
-  return released.quality.flipped_faces.size() < current.quality.flipped_faces.size() &&
-         area_error(released) <= std::max(kAreaTolerance, area_error(current));
+  return other.quality.flipped_faces.size() < current.quality.flipped_faces.size() &&
+         other.distortion.degenerate_faces <= current.distortion.degenerate_faces &&
+         area_error(other) <= std::max(kAreaTolerance, area_error(current));
+}
+
+// map_through_anchors, or nothing when those anchors cannot be laid out or parameterized.
+std::optional<PairMapping> map_if_possible(const Mesh& source, const AnchorSet& source_anchors,
+                                           const Mesh& target, const AnchorSet& target_anchors,
+                                           const std::vector<FeatureCurve>& curves,
+                                           const PairSettings& settings, const StageCallback& on_stage) {
+  try {
+    return map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, on_stage);
+  } catch (const LayoutError&) {
+    return std::nullopt;
+  } catch (const ParamError&) {
+    return std::nullopt;
+  }
 }
 
 // The distance from the remesh's point at the template's landmark `name` to the target's.
@@ -363,12 +379,42 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   Stopwatch total;
   PairMapping result =
       map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, on_stage);
-  if (settings.max_released_anchors <= 0 || result.quality.flipped_faces.empty()) return result;
-  const std::array<PlacedAnchors, 2> all_anchors = result.anchors;
   AnchorSet kept_source = source_anchors;
   AnchorSet kept_target = target_anchors;
-  std::vector<ReleasedAnchor> released;
   PairSeconds seconds = result.seconds;
+  if (settings.tip_anchors && !result.quality.flipped_faces.empty() && !result.mismatched_corners.empty()) {
+    // Helpers are always placed on the map without them: its layout shows the disagreeing tips.
+    const Layout without_helpers = result.layout.layout;
+    const std::vector<CornerMismatch> tips = result.mismatched_corners;
+    const std::vector<std::string> names = anchor_names(result.anchors[0]);
+    for (const double reach : settings.tip_anchor_reaches) {
+      if (result.quality.flipped_faces.empty()) break;
+      std::vector<TipAnchor> helpers = tip_anchors(without_helpers, {&source, &target}, names, tips, reach);
+      AnchorSet helped_source = source_anchors;
+      AnchorSet helped_target = target_anchors;
+      for (const TipAnchor& helper : helpers) {
+        helped_source.anchors.push_back(helper.specs[0]);
+        helped_target.anchors.push_back(helper.specs[1]);
+      }
+      if (on_stage) on_stage("mapping again with helper anchors behind the tips");
+      std::optional<PairMapping> trial =
+          map_if_possible(source, helped_source, target, helped_target, curves, settings, on_stage);
+      if (!trial) continue;
+      seconds.add_stages(trial->seconds);
+      if (!folds_less(*trial, result)) continue;
+      result = std::move(*trial);
+      result.tip_anchors = std::move(helpers);
+      kept_source = std::move(helped_source);
+      kept_target = std::move(helped_target);
+    }
+  }
+  if (settings.max_released_anchors <= 0 || result.quality.flipped_faces.empty()) {
+    result.seconds = seconds;
+    result.seconds.total = total.lap();
+    return result;
+  }
+  const std::array<PlacedAnchors, 2> all_anchors = result.anchors;
+  std::vector<ReleasedAnchor> released;
   while (!result.quality.flipped_faces.empty() &&
          static_cast<int>(released.size()) < settings.max_released_anchors &&
          static_cast<int>(kept_source.anchors.size()) > kMinAnchors) {
@@ -378,20 +424,17 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
       const AnchorSet fewer_source = without_anchor(kept_source, candidate.name);
       const AnchorSet fewer_target = without_anchor(kept_target, candidate.name);
       if (on_stage) on_stage("mapping again without anchor \"" + candidate.name + "\"");
-      PairMapping trial;
-      try {
-        trial = map_through_anchors(source, fewer_source, target, fewer_target, curves, settings, on_stage);
-      } catch (const LayoutError&) {
-        continue;  // the anchors left cannot be laid out or parameterized: this anchor stays
-      } catch (const ParamError&) {
-        continue;
-      }
-      seconds.add_stages(trial.seconds);
-      if (!release_helps(trial, result)) continue;
+      std::optional<PairMapping> trial =
+          map_if_possible(source, fewer_source, target, fewer_target, curves, settings, on_stage);
+      if (!trial) continue;  // the anchors left cannot be laid out or parameterized: this anchor stays
+      seconds.add_stages(trial->seconds);
+      if (!folds_less(*trial, result)) continue;
       released.push_back({candidate.name, candidate.folded_faces, 0.0});
       kept_source = fewer_source;
       kept_target = fewer_target;
-      result = std::move(trial);
+      std::vector<TipAnchor> helpers = std::move(result.tip_anchors);
+      result = std::move(*trial);
+      result.tip_anchors = std::move(helpers);
       helped = true;
       break;
     }
@@ -399,6 +442,9 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   }
   for (ReleasedAnchor& anchor : released)
     anchor.miss_distance = miss_distance(anchor.name, all_anchors, source, target, result.remesh_vertices);
+  for (const ReleasedAnchor& anchor : released)
+    std::erase_if(result.tip_anchors,
+                  [&](const TipAnchor& helper) { return helper.specs[0].name == anchor.name; });
   result.released_anchors = std::move(released);
   result.seconds = seconds;
   result.seconds.total = total.lap();

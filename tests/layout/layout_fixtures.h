@@ -173,4 +173,16 @@ inline VertexHandle vertex_at(const Mesh& mesh, const Eigen::Vector3d& p) {
   return best;
 }
 
+/// The bundled man laid out against himself with his bundled anchors, named "a0", "a1", ...
+struct SelfLayout {
+  Mesh mesh = load(data_path("human_man.obj"));
+  std::vector<VertexHandle> anchors = handles(anchor_vertex_ids("human_man.anchors.json"));
+  ConsistentLayoutResult built = build_consistent_layout(mesh, anchors, mesh, anchors);
+  std::vector<std::string> names;
+
+  SelfLayout() {
+    for (std::size_t k = 0; k < anchors.size(); ++k) names.push_back("a" + std::to_string(k));
+  }
+};
+
 }  // namespace xparam::test

@@ -16,19 +16,8 @@
 namespace xparam {
 namespace {
 
-struct SelfLayout {
-  Mesh mesh = test::load(test::data_path("human_man.obj"));
-  std::vector<VertexHandle> anchors = test::handles(test::anchor_vertex_ids("human_man.anchors.json"));
-  ConsistentLayoutResult built = build_consistent_layout(mesh, anchors, mesh, anchors);
-  std::vector<std::string> names;
-
-  SelfLayout() {
-    for (std::size_t k = 0; k < anchors.size(); ++k) names.push_back("a" + std::to_string(k));
-  }
-};
-
 TEST(MismatchedCorners, AMeshAgainstItselfAgreesAtEveryAnchor) {
-  const SelfLayout self;
+  const test::SelfLayout self;
   const Layout& layout = self.built.layout;
   EXPECT_TRUE(mismatched_corners(layout, self.names).empty());
   // With no threshold every anchor is listed, with one corner per curve leaving it.
@@ -54,7 +43,7 @@ TEST(MismatchedCorners, AMeshAgainstItselfAgreesAtEveryAnchor) {
 }
 
 TEST(MismatchedCorners, RefusesNamesThatDoNotMatchTheAnchors) {
-  const SelfLayout self;
+  const test::SelfLayout self;
   std::vector<std::string> fewer = self.names;
   fewer.pop_back();
   EXPECT_THROW(mismatched_corners(self.built.layout, fewer), ParamError);
