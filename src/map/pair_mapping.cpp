@@ -360,6 +360,90 @@ double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>
   return (on_remesh - position(target, all_anchors[1].anchors[k].input_point)).norm();
 }
 
+// What every further try of map_pair maps again from.
+struct PairInputs {
+  const Mesh& source;
+  const Mesh& target;
+  const std::vector<FeatureCurve>& curves;
+  const PairSettings& settings;
+  const StageCallback& on_stage;
+};
+
+// A map and the anchor sets it was made through.
+struct AnchoredMap {
+  PairMapping map;
+  AnchorSet source_anchors;
+  AnchorSet target_anchors;
+};
+
+// `current`, or a map through its anchors plus helper anchors behind its tips when it folds and
+// its corners disagree (PairSettings::tip_anchors): each of tip_anchor_reaches in turn until a
+// map has no fold, a map replacing the best so far when it folds less.
+AnchoredMap with_helpers_behind_tips(const PairInputs& in, AnchoredMap current, PairSeconds& seconds) {
+  if (current.map.quality.flipped_faces.empty() || current.map.mismatched_corners.empty()) return current;
+  // Helpers are always placed on the map without them: its layout shows the disagreeing tips.
+  const Layout without_helpers = current.map.layout.layout;
+  const std::vector<CornerMismatch> tips = current.map.mismatched_corners;
+  const std::vector<std::string> names = anchor_names(current.map.anchors[0]);
+  const AnchorSet given_source = current.source_anchors;
+  const AnchorSet given_target = current.target_anchors;
+  AnchoredMap best = std::move(current);
+  for (const double reach : in.settings.tip_anchor_reaches) {
+    if (best.map.quality.flipped_faces.empty()) break;
+    std::vector<TipAnchor> helpers =
+        tip_anchors(without_helpers, {&in.source, &in.target}, names, tips, reach);
+    AnchoredMap helped{{}, given_source, given_target};
+    for (const TipAnchor& helper : helpers) {
+      helped.source_anchors.anchors.push_back(helper.specs[0]);
+      helped.target_anchors.anchors.push_back(helper.specs[1]);
+    }
+    if (in.on_stage) in.on_stage("mapping again with helper anchors behind the tips");
+    std::optional<PairMapping> trial =
+        map_if_possible(in.source, helped.source_anchors, in.target, helped.target_anchors, in.curves,
+                        in.settings, in.on_stage);
+    if (!trial) continue;
+    seconds.add_stages(trial->seconds);
+    if (!folds_less(*trial, best.map)) continue;
+    helped.map = std::move(*trial);
+    helped.map.tip_anchors = std::move(helpers);
+    helped.map.released_anchors = best.map.released_anchors;
+    best = std::move(helped);
+  }
+  return best;
+}
+
+// `current` with anchors released one at a time (PairSettings::max_released_anchors; see
+// map_pair), their miss distances not yet measured.
+AnchoredMap release_anchors(const PairInputs& in, AnchoredMap current, PairSeconds& seconds) {
+  std::vector<ReleasedAnchor> released;
+  while (!current.map.quality.flipped_faces.empty() &&
+         static_cast<int>(released.size()) < in.settings.max_released_anchors &&
+         static_cast<int>(current.source_anchors.anchors.size()) > kMinAnchors) {
+    bool helped = false;
+    const std::vector<AnchorFolds> candidates = current.map.folds_by_anchor;
+    for (const AnchorFolds& candidate : candidates) {
+      AnchoredMap fewer{{},
+                        without_anchor(current.source_anchors, candidate.name),
+                        without_anchor(current.target_anchors, candidate.name)};
+      if (in.on_stage) in.on_stage("mapping again without anchor \"" + candidate.name + "\"");
+      std::optional<PairMapping> trial =
+          map_if_possible(in.source, fewer.source_anchors, in.target, fewer.target_anchors, in.curves,
+                          in.settings, in.on_stage);
+      if (!trial) continue;  // the anchors left cannot be laid out or parameterized: this anchor stays
+      seconds.add_stages(trial->seconds);
+      if (!folds_less(*trial, current.map)) continue;
+      released.push_back({candidate.name, candidate.folded_faces, 0.0});
+      fewer.map = std::move(*trial);
+      current = std::move(fewer);
+      helped = true;
+      break;
+    }
+    if (!helped) break;
+  }
+  current.map.released_anchors = std::move(released);
+  return current;
+}
+
 }  // namespace
 
 void PairSeconds::add_stages(const PairSeconds& other) {
@@ -377,75 +461,24 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
                      const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
                      const PairSettings& settings, const StageCallback& on_stage) {
   Stopwatch total;
-  PairMapping result =
-      map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, on_stage);
-  AnchorSet kept_source = source_anchors;
-  AnchorSet kept_target = target_anchors;
-  PairSeconds seconds = result.seconds;
-  if (settings.tip_anchors && !result.quality.flipped_faces.empty() && !result.mismatched_corners.empty()) {
-    // Helpers are always placed on the map without them: its layout shows the disagreeing tips.
-    const Layout without_helpers = result.layout.layout;
-    const std::vector<CornerMismatch> tips = result.mismatched_corners;
-    const std::vector<std::string> names = anchor_names(result.anchors[0]);
-    for (const double reach : settings.tip_anchor_reaches) {
-      if (result.quality.flipped_faces.empty()) break;
-      std::vector<TipAnchor> helpers = tip_anchors(without_helpers, {&source, &target}, names, tips, reach);
-      AnchorSet helped_source = source_anchors;
-      AnchorSet helped_target = target_anchors;
-      for (const TipAnchor& helper : helpers) {
-        helped_source.anchors.push_back(helper.specs[0]);
-        helped_target.anchors.push_back(helper.specs[1]);
-      }
-      if (on_stage) on_stage("mapping again with helper anchors behind the tips");
-      std::optional<PairMapping> trial =
-          map_if_possible(source, helped_source, target, helped_target, curves, settings, on_stage);
-      if (!trial) continue;
-      seconds.add_stages(trial->seconds);
-      if (!folds_less(*trial, result)) continue;
-      result = std::move(*trial);
-      result.tip_anchors = std::move(helpers);
-      kept_source = std::move(helped_source);
-      kept_target = std::move(helped_target);
-    }
+  const PairInputs in{source, target, curves, settings, on_stage};
+  const AnchoredMap plain{
+      map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, on_stage),
+      source_anchors, target_anchors};
+  PairSeconds seconds = plain.map.seconds;
+  AnchoredMap best = settings.tip_anchors ? with_helpers_behind_tips(in, plain, seconds) : plain;
+  if (settings.max_released_anchors > 0 && !best.map.quality.flipped_faces.empty()) {
+    // Releasing starts from the map through the given anchors alone (a helper is no landmark),
+    // then helpers are tried on what it leaves; the better of the two ways is kept (SHREC'19 17:
+    // helpers leave 1 fold, releasing the misplaced knuckle none).
+    AnchoredMap released = release_anchors(in, plain, seconds);
+    if (settings.tip_anchors) released = with_helpers_behind_tips(in, std::move(released), seconds);
+    if (folds_less(released.map, best.map)) best = std::move(released);
   }
-  if (settings.max_released_anchors <= 0 || result.quality.flipped_faces.empty()) {
-    result.seconds = seconds;
-    result.seconds.total = total.lap();
-    return result;
-  }
-  const std::array<PlacedAnchors, 2> all_anchors = result.anchors;
-  std::vector<ReleasedAnchor> released;
-  while (!result.quality.flipped_faces.empty() &&
-         static_cast<int>(released.size()) < settings.max_released_anchors &&
-         static_cast<int>(kept_source.anchors.size()) > kMinAnchors) {
-    bool helped = false;
-    const std::vector<AnchorFolds> candidates = result.folds_by_anchor;
-    for (const AnchorFolds& candidate : candidates) {
-      const AnchorSet fewer_source = without_anchor(kept_source, candidate.name);
-      const AnchorSet fewer_target = without_anchor(kept_target, candidate.name);
-      if (on_stage) on_stage("mapping again without anchor \"" + candidate.name + "\"");
-      std::optional<PairMapping> trial =
-          map_if_possible(source, fewer_source, target, fewer_target, curves, settings, on_stage);
-      if (!trial) continue;  // the anchors left cannot be laid out or parameterized: this anchor stays
-      seconds.add_stages(trial->seconds);
-      if (!folds_less(*trial, result)) continue;
-      released.push_back({candidate.name, candidate.folded_faces, 0.0});
-      kept_source = fewer_source;
-      kept_target = fewer_target;
-      std::vector<TipAnchor> helpers = std::move(result.tip_anchors);
-      result = std::move(*trial);
-      result.tip_anchors = std::move(helpers);
-      helped = true;
-      break;
-    }
-    if (!helped) break;
-  }
-  for (ReleasedAnchor& anchor : released)
-    anchor.miss_distance = miss_distance(anchor.name, all_anchors, source, target, result.remesh_vertices);
-  for (const ReleasedAnchor& anchor : released)
-    std::erase_if(result.tip_anchors,
-                  [&](const TipAnchor& helper) { return helper.specs[0].name == anchor.name; });
-  result.released_anchors = std::move(released);
+  PairMapping result = std::move(best.map);
+  for (ReleasedAnchor& anchor : result.released_anchors)
+    anchor.miss_distance =
+        miss_distance(anchor.name, plain.map.anchors, source, target, result.remesh_vertices);
   result.seconds = seconds;
   result.seconds.total = total.lap();
   return result;

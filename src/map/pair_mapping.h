@@ -153,14 +153,17 @@ using StageCallback = std::function<void(const std::string& stage)>;
 /// With settings.tip_anchors, folds left and anchors whose corners disagree, the pair is mapped
 /// again through a helper anchor behind each such anchor (map/tip_anchors.h), at each of
 /// settings.tip_anchor_reaches in turn until a map has no fold; such a map replaces the best so
-/// far when it folds less with the area ratio within 2% of 1 (or no farther from 1 than before).
+/// far when it folds less, collapses no more template faces and has its area ratio within 2% of
+/// 1 (or no farther from 1 than before).
 ///
-/// With settings.max_released_anchors > 0 and folds left, anchors are released one at a time:
-/// the anchors folds_by_anchor names are tried in its order (the most folds first), and the
-/// first whose release gives a map with fewer folds and an area ratio within 2% of 1 (or no
-/// farther from 1 than before) is released; then again from the new map. It stops when the
-/// map has no fold, when no named anchor's release helps, or at the limit. A release whose
-/// layout cannot be built is passed over.
+/// With settings.max_released_anchors > 0 and folds still left, anchors are released one at a
+/// time, starting again from the map through the given anchors (a helper is no landmark): the
+/// anchors folds_by_anchor names are tried in its order (the most folds first), and the first
+/// whose release gives a map that folds less by the same rule is released; then again from the
+/// new map. It stops when the map has no fold, when no named anchor's release helps, or at the
+/// limit. A release whose layout cannot be built is passed over. Helpers behind tips are then
+/// tried on the released map, and the better of the two ways (helpers alone, or releases then
+/// helpers) is kept by the same rule.
 /// \throw InputError for anchors that do not match or cannot be placed
 /// \throw LayoutError when the meshes cannot be laid out (genus, components)
 /// \throw ParamError when a patch cannot be parameterized

@@ -93,6 +93,7 @@ TEST(PairCommand, MetricsReportTheMapTheUntanglingAndTheStages) {
   EXPECT_EQ(metrics["layouts"]["kept"], 1);
   EXPECT_EQ(metrics["released_anchors"], nlohmann::json::array());  // no fold, and releasing is off
   EXPECT_TRUE(metrics["mismatched_corners"].is_array());
+  EXPECT_EQ(metrics["tip_anchors"], nlohmann::json::array());  // no fold: no helper anchor tried
   EXPECT_EQ(metrics["relaxation"]["enabled"], true);
   EXPECT_LE(metrics["relaxation"]["energy_after"].get<double>(),
             metrics["relaxation"]["energy_before"].get<double>());
