@@ -376,23 +376,22 @@ struct AnchoredMap {
   AnchorSet target_anchors;
 };
 
-// `current`, or a map through its anchors plus helper anchors behind its tips when it folds and
+// A map through `current`'s anchors plus helper anchors behind its tips, when `current` folds and
 // its corners disagree (PairSettings::tip_anchors): each of tip_anchor_reaches in turn until a
-// map has no fold, a map replacing the best so far when it folds less.
-AnchoredMap with_helpers_behind_tips(const PairInputs& in, AnchoredMap current, PairSeconds& seconds) {
-  if (current.map.quality.flipped_faces.empty() || current.map.mismatched_corners.empty()) return current;
+// map has no fold, a map replacing the best so far when it folds less. Nothing when no try
+// folds less than `current`.
+std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const AnchoredMap& current,
+                                                    PairSeconds& seconds) {
+  std::optional<AnchoredMap> best;
+  if (current.map.mismatched_corners.empty()) return best;
   // Helpers are always placed on the map without them: its layout shows the disagreeing tips.
-  const Layout without_helpers = current.map.layout.layout;
-  const std::vector<CornerMismatch> tips = current.map.mismatched_corners;
   const std::vector<std::string> names = anchor_names(current.map.anchors[0]);
-  const AnchorSet given_source = current.source_anchors;
-  const AnchorSet given_target = current.target_anchors;
-  AnchoredMap best = std::move(current);
   for (const double reach : in.settings.tip_anchor_reaches) {
-    if (best.map.quality.flipped_faces.empty()) break;
-    std::vector<TipAnchor> helpers =
-        tip_anchors(without_helpers, {&in.source, &in.target}, names, tips, reach);
-    AnchoredMap helped{{}, given_source, given_target};
+    const PairMapping& to_beat = best ? best->map : current.map;
+    if (to_beat.quality.flipped_faces.empty()) break;
+    std::vector<TipAnchor> helpers = tip_anchors(current.map.layout.layout, {&in.source, &in.target}, names,
+                                                 current.map.mismatched_corners, reach);
+    AnchoredMap helped{{}, current.source_anchors, current.target_anchors};
     for (const TipAnchor& helper : helpers) {
       helped.source_anchors.anchors.push_back(helper.specs[0]);
       helped.target_anchors.anchors.push_back(helper.specs[1]);
@@ -403,22 +402,28 @@ AnchoredMap with_helpers_behind_tips(const PairInputs& in, AnchoredMap current, 
                         in.settings, in.on_stage);
     if (!trial) continue;
     seconds.add_stages(trial->seconds);
-    if (!folds_less(*trial, best.map)) continue;
+    if (!folds_less(*trial, to_beat)) continue;
     helped.map = std::move(*trial);
     helped.map.tip_anchors = std::move(helpers);
-    helped.map.released_anchors = best.map.released_anchors;
+    helped.map.released_anchors = current.map.released_anchors;
     best = std::move(helped);
   }
   return best;
 }
 
-// `current` with anchors released one at a time (PairSettings::max_released_anchors; see
-// map_pair), their miss distances not yet measured.
-AnchoredMap release_anchors(const PairInputs& in, AnchoredMap current, PairSeconds& seconds) {
+// A map through `start`'s anchors less some released one at a time, when `start` folds
+// (PairSettings::max_released_anchors; see map_pair), their miss distances not yet measured.
+// Nothing when no release folds less.
+std::optional<AnchoredMap> release_anchors(const PairInputs& in, const AnchoredMap& start,
+                                           PairSeconds& seconds) {
+  std::optional<AnchoredMap> best;
   std::vector<ReleasedAnchor> released;
-  while (!current.map.quality.flipped_faces.empty() &&
-         static_cast<int>(released.size()) < in.settings.max_released_anchors &&
-         static_cast<int>(current.source_anchors.anchors.size()) > kMinAnchors) {
+  for (;;) {
+    const AnchoredMap& current = best ? *best : start;
+    if (current.map.quality.flipped_faces.empty() ||
+        static_cast<int>(released.size()) >= in.settings.max_released_anchors ||
+        static_cast<int>(current.source_anchors.anchors.size()) <= kMinAnchors)
+      break;
     bool helped = false;
     const std::vector<AnchorFolds> candidates = current.map.folds_by_anchor;
     for (const AnchorFolds& candidate : candidates) {
@@ -434,14 +439,14 @@ AnchoredMap release_anchors(const PairInputs& in, AnchoredMap current, PairSecon
       if (!folds_less(*trial, current.map)) continue;
       released.push_back({candidate.name, candidate.folded_faces, 0.0});
       fewer.map = std::move(*trial);
-      current = std::move(fewer);
+      best = std::move(fewer);  // `current` may refer to *best: nothing of it is read after this
       helped = true;
       break;
     }
     if (!helped) break;
   }
-  current.map.released_anchors = std::move(released);
-  return current;
+  if (best) best->map.released_anchors = std::move(released);
+  return best;
 }
 
 }  // namespace
@@ -462,20 +467,26 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
                      const PairSettings& settings, const StageCallback& on_stage) {
   Stopwatch total;
   const PairInputs in{source, target, curves, settings, on_stage};
-  const AnchoredMap plain{
+  AnchoredMap plain{
       map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, on_stage),
       source_anchors, target_anchors};
   PairSeconds seconds = plain.map.seconds;
-  AnchoredMap best = settings.tip_anchors ? with_helpers_behind_tips(in, plain, seconds) : plain;
-  if (settings.max_released_anchors > 0 && !best.map.quality.flipped_faces.empty()) {
+  std::optional<AnchoredMap> best;  // a map that folds less than `plain`, when one was found
+  if (settings.tip_anchors && !plain.map.quality.flipped_faces.empty())
+    best = with_helpers_behind_tips(in, plain, seconds);
+  const PairMapping& so_far = best ? best->map : plain.map;
+  if (settings.max_released_anchors > 0 && !so_far.quality.flipped_faces.empty()) {
     // Releasing starts from the map through the given anchors alone (a helper is no landmark),
     // then helpers are tried on what it leaves; the better of the two ways is kept (SHREC'19 17:
     // helpers leave 1 fold, releasing the misplaced knuckle none).
-    AnchoredMap released = release_anchors(in, plain, seconds);
-    if (settings.tip_anchors) released = with_helpers_behind_tips(in, std::move(released), seconds);
-    if (folds_less(released.map, best.map)) best = std::move(released);
+    std::optional<AnchoredMap> released = release_anchors(in, plain, seconds);
+    if (released && settings.tip_anchors && !released->map.quality.flipped_faces.empty()) {
+      if (std::optional<AnchoredMap> helped = with_helpers_behind_tips(in, *released, seconds))
+        released = std::move(helped);
+    }
+    if (released && folds_less(released->map, so_far)) best = std::move(released);
   }
-  PairMapping result = std::move(best.map);
+  PairMapping result = best ? std::move(best->map) : std::move(plain.map);
   for (ReleasedAnchor& anchor : result.released_anchors)
     anchor.miss_distance =
         miss_distance(anchor.name, plain.map.anchors, source, target, result.remesh_vertices);
