@@ -18,17 +18,30 @@ function(xparam_stage name dir)
   target_link_libraries(${name} PUBLIC ${ARG_DEPENDS} PRIVATE xparam_compile_options)
 endfunction()
 
-# One GoogleTest executable per test folder, from every *_test.cpp in it.
+# GoogleTest executables of a test folder: `name` from every *_test.cpp in it, and
+# `name`_real_data from its *_real_data_test.cpp files (long cases on ../shared/data), whose
+# tests carry the ctest label `real_data` (the others `fast`) so a pass can leave them out
+# (`ctest -LE real_data`).
 function(xparam_test_folder name dir)
   cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${dir}/*_test.cpp)
-  if(NOT sources)
-    return()
+  set(real_data_sources ${sources})
+  list(FILTER sources EXCLUDE REGEX "_real_data_test\\.cpp$")
+  list(FILTER real_data_sources INCLUDE REGEX "_real_data_test\\.cpp$")
+  if(sources)
+    xparam_test_executable(${name} fast ${sources} DEPENDS ${ARG_DEPENDS})
   endif()
-  add_executable(${name} ${sources})
+  if(real_data_sources)
+    xparam_test_executable(${name}_real_data real_data ${real_data_sources} DEPENDS ${ARG_DEPENDS})
+  endif()
+endfunction()
+
+function(xparam_test_executable name label)
+  cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
+  add_executable(${name} ${ARG_UNPARSED_ARGUMENTS})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} xparam_test_support GTest::gtest_main
                                         xparam_compile_options)
   gtest_discover_tests(${name} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-                       PROPERTIES ENVIRONMENT "XPARAM_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+                       PROPERTIES ENVIRONMENT "XPARAM_SOURCE_DIR=${PROJECT_SOURCE_DIR}" LABELS "${label}"
                        DISCOVERY_TIMEOUT 60)
 endfunction()

@@ -51,6 +51,20 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
           "folds less with the area ratio within 2%; the released anchors and how far the map lands "
           "from them are reported (default 0: every anchor is kept)")
       ->check(CLI::Range(0, 1000));
+  command.add_flag(
+      "--optimize-map,!--no-optimize-map", settings.optimize_map,
+      "Optimize the composed map on the target surface: every template vertex but the anchors slides "
+      "across patch boundaries to lower the distortion, and no step folds a remesh face (default on; "
+      "off gives the layout's map)");
+  command
+      .add_option("--map-sweeps", settings.map_optimization.max_sweeps,
+                  "Sweeps over the template's vertices that optimizing the map runs at most (default 200)")
+      ->check(CLI::Range(0, 100000));
+  command
+      .add_option("--anchor-slack", settings.anchor_slack,
+                  "For landmarks placed by hand on scans: how far (target units) optimizing the map may move "
+                  "each anchor's image from its landmark; the miss is reported per anchor (default 0: exact)")
+      ->check(CLI::Range(0.0, 1e300));
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");

@@ -103,6 +103,14 @@ nlohmann::json helpers_json(const std::vector<TipAnchor>& helpers, const LoadedM
   return list;
 }
 
+// Per anchor: how far the map lands from the target's landmark (0 up to rounding for an exact anchor).
+nlohmann::json anchor_miss_json(const PairMapping& mapping) {
+  nlohmann::json misses = nlohmann::json::object();
+  for (std::size_t k = 0; k < mapping.anchor_miss.size(); ++k)
+    misses[mapping.anchors[0].anchors[k].name] = mapping.anchor_miss[k];
+  return misses;
+}
+
 nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping) {
   const Layout& layout = mapping.layout.layout;
   nlohmann::json metrics = {
@@ -114,6 +122,7 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
       {"degenerate_faces", mapping.distortion.degenerate_faces},
       {"flipped_faces", mapping.quality.flipped_faces.size()},
       {"flipped_face_ids", mapping.quality.flipped_faces},
+      {"strictly_folded_faces", mapping.quality.strictly_folded_faces},
       {"folds_by_anchor", folds_json(mapping.folds_by_anchor)},
       {"mismatched_corners", corners_json(mapping.mismatched_corners)},
       {"area_ratio", number(mapping.quality.area_ratio)},
@@ -137,6 +146,16 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
         {"glued_charts", mapping.relaxation.glued_charts},
         {"glued_patches", mapping.relaxation.glued_patches},
         {"undone", mapping.relaxation.undone}}},
+      {"map_optimization",
+       {{"enabled", mapping.settings.optimize_map},
+        {"energy_before", number(mapping.map_optimization.energy_before)},
+        {"energy_after", number(mapping.map_optimization.energy_after)},
+        {"flipped_before", mapping.map_optimization.flipped_before},
+        {"flipped_after", mapping.map_optimization.flipped_after},
+        {"sweeps", mapping.map_optimization.sweeps},
+        {"moved_vertices", mapping.map_optimization.moved_vertices},
+        {"anchor_slack", mapping.settings.anchor_slack}}},
+      {"anchor_miss", anchor_miss_json(mapping)},
       {"untangling",
        {{"enabled", mapping.settings.untangle},
         {"flipped_before", mapping.untangling.flipped_before},
@@ -151,6 +170,7 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
         {"relax", mapping.seconds.relax},
         {"compose", mapping.seconds.compose},
         {"untangle", mapping.seconds.untangle},
+        {"optimize_map", mapping.seconds.optimize_map},
         {"metrics", mapping.seconds.metrics},
         {"total", mapping.seconds.total}}},
   };

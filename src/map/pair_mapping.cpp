@@ -1,5 +1,6 @@
 #include "map/pair_mapping.h"
 
+#include "core/closest_point.h"
 #include "core/errors.h"
 #include "core/provenance.h"
 #include "core/stopwatch.h"
@@ -105,9 +106,43 @@ struct MapAttempt {
   DomainOptimizationResult optimization;
   std::unique_ptr<CrossMap> cross;
   ComposedImages composed;
+  std::optional<MapOptimizationResult> optimized;  // the map optimized on the target, when asked
 
-  int folds() const { return composed.untangled.flipped_after; }
+  int folds() const { return optimized ? optimized->flipped_after : composed.untangled.flipped_after; }
+
+  // Where the map puts the template's vertices on the target, and those points in 3-D.
+  std::vector<SurfacePoint> locations() const {
+    if (optimized) return optimized->locations;
+    std::vector<SurfacePoint> points;
+    points.reserve(composed.untangled.images.size());
+    for (const MappedPoint& image : composed.untangled.images) points.push_back(image.on_input);
+    return points;
+  }
+  std::vector<Eigen::Vector3d> positions() const {
+    if (optimized) return optimized->positions;
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(composed.untangled.images.size());
+    for (const MappedPoint& image : composed.untangled.images) points.push_back(image.position);
+    return points;
+  }
 };
+
+// The template vertices an anchor holds: a vertex anchor's vertex, within `slack` of the
+// target's landmark; every corner of the face an anchor inside a face lies in, held where it is.
+std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& anchors, const Mesh& source,
+                                          const Mesh& target, double slack) {
+  std::vector<PinnedVertex> pinned;
+  for (std::size_t k = 0; k < anchors[0].anchors.size(); ++k) {
+    const SurfacePoint& on_template = anchors[0].anchors[k].input_point;
+    const Eigen::Vector3d landmark = position(target, anchors[1].anchors[k].input_point);
+    const int corners_used = static_cast<int>((on_template.bary.array() > 0.0).count());
+    int corner = 0;
+    for (VertexHandle v : source.fv_range(source.face_handle(on_template.face))) {
+      if (on_template.bary[corner++] > 0.0) pinned.push_back({v.idx(), landmark, corners_used == 1 ? slack : 0.0});
+    }
+  }
+  return pinned;
+}
 
 MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& source,
                        const std::vector<std::array<int, 3>>& faces, const Mesh& target,
@@ -165,6 +200,14 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
   if (later) cross.restore(*best_state);
   seconds.untangle += composed.untangle_seconds;
   seconds.compose += watch.lap();
+
+  if (settings.optimize_map) {
+    stage("optimize map");
+    attempt.optimized = optimize_map(source, faces, target, attempt.locations(),
+                                     pinned_vertices(anchors, source, target, settings.anchor_slack),
+                                     settings.map_optimization);
+    seconds.optimize_map += watch.lap();
+  }
   return attempt;
 }
 
@@ -173,9 +216,9 @@ std::vector<int> anchors_at_folds(const MapAttempt& attempt, const std::vector<s
                                   const Mesh& target, const std::vector<std::string>& names) {
   const LayoutSide& side = attempt.layout->layout.sides[0];
   std::vector<int> anchors;
-  for (const AnchorFolds& folds : folds_by_anchor(
-           side.mesh, side.anchor_vertices, names, faces,
-           measure_remesh_quality(faces, attempt.composed.untangled.images, target).flipped_faces))
+  for (const AnchorFolds& folds :
+       folds_by_anchor(side.mesh, side.anchor_vertices, names, faces,
+                       measure_remesh_quality(faces, attempt.positions(), attempt.locations(), target).flipped_faces))
     anchors.push_back(folds.anchor);
   std::sort(anchors.begin(), anchors.end());
   return anchors;
@@ -195,6 +238,19 @@ std::vector<int> with_layout_neighbours(const std::vector<int>& anchors, const L
     if (kept[k]) result.push_back(k);
   }
   return result;
+}
+
+// The distance from the remesh's point at the template's landmark `name` to the target's.
+double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors,
+                     const Mesh& source, const Mesh& target, const Eigen::MatrixX3d& remesh_vertices) {
+  std::size_t k = 0;
+  while (all_anchors[0].anchors[k].name != name) ++k;
+  const SurfacePoint& on_template = all_anchors[0].anchors[k].input_point;
+  Eigen::Vector3d on_remesh = Eigen::Vector3d::Zero();
+  int corner = 0;
+  for (VertexHandle v : source.fv_range(source.face_handle(on_template.face)))
+    on_remesh += on_template.bary[corner++] * remesh_vertices.row(v.idx()).transpose();
+  return (on_remesh - position(target, all_anchors[1].anchors[k].input_point)).norm();
 }
 
 // map_pair on the anchors as given (no anchor released).
@@ -271,21 +327,43 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
                          static_cast<int>(warp.moves.size()),
                          untangled.rounds};
   }
+  if (attempt.optimized) {
+    const MapOptimizationResult& optimized = *attempt.optimized;
+    result.map_optimization = {true,
+                               optimized.distortion_before,
+                               optimized.distortion_after,
+                               optimized.flipped_before,
+                               optimized.flipped_after,
+                               optimized.sweeps,
+                               optimized.moved_vertices};
+  }
   const int n_vertices = static_cast<int>(source.n_vertices());
   const Layout& layout = attempt.layout->layout;
-  result.correspondence.resize(n_vertices);
+  result.correspondence = attempt.locations();
+  const std::vector<Eigen::Vector3d> image_positions = attempt.positions();
   result.remesh_vertices.resize(n_vertices, 3);
   for (int v = 0; v < n_vertices; ++v) {
-    result.correspondence[v] = images[v].on_input;
-    result.remesh_vertices.row(v) = images[v].position.transpose();
+    result.remesh_vertices.row(v) = image_positions[v].transpose();
     result.max_clamp_distance = std::max(result.max_clamp_distance, images[v].clamp_distance);
   }
   result.face_patch = input_face_patches(layout.sides[0].mesh, static_cast<int>(source.n_faces()));
+  // An optimized map is piecewise linear on the remesh: a curve point goes to its face's chord
+  // triangle, then onto the nearest target point.
+  std::optional<ClosestPointIndex> on_target;
+  if (attempt.optimized && !curves.empty()) on_target.emplace(target);
   for (const FeatureCurve& curve : curves) {
     MappedCurve mapped;
     mapped.name = curve.name;
     mapped.closed = curve.closed;
     for (const SurfacePoint& point : curve.points) {
+      if (on_target) {
+        Eigen::Vector3d chord = Eigen::Vector3d::Zero();
+        for (int c = 0; c < 3; ++c) chord += point.bary[c] * image_positions[faces[point.face][c]];
+        const ClosestPoint nearest = on_target->closest(chord);
+        mapped.points.push_back(nearest.location);
+        mapped.positions.push_back(nearest.point);
+        continue;
+      }
       const MappedPoint image = cross.map_input_point(warp(point));
       mapped.points.push_back(image.on_input);
       mapped.positions.push_back(image.position);
@@ -297,11 +375,9 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
 
   stage("metrics");
   std::vector<Eigen::Vector3d> source_positions(n_vertices);
-  std::vector<Eigen::Vector3d> image_positions(n_vertices);
-  for (int v = 0; v < n_vertices; ++v) {
-    source_positions[v] = position(source, source.vertex_handle(v));
-    image_positions[v] = images[v].position;
-  }
+  for (int v = 0; v < n_vertices; ++v) source_positions[v] = position(source, source.vertex_handle(v));
+  for (const PlacedAnchor& anchor : result.anchors[0].anchors)
+    result.anchor_miss.push_back(miss_distance(anchor.name, result.anchors, source, target, result.remesh_vertices));
   result.distortion = measure_distortion(source_positions, image_positions, faces);
   result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
   result.folds_by_anchor = folds_by_anchor(layout.sides[0].mesh, layout.sides[0].anchor_vertices, names,
@@ -345,19 +421,6 @@ std::optional<PairMapping> map_if_possible(const Mesh& source, const AnchorSet& 
   } catch (const ParamError&) {
     return std::nullopt;
   }
-}
-
-// The distance from the remesh's point at the template's landmark `name` to the target's.
-double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors,
-                     const Mesh& source, const Mesh& target, const Eigen::MatrixX3d& remesh_vertices) {
-  std::size_t k = 0;
-  while (all_anchors[0].anchors[k].name != name) ++k;
-  const SurfacePoint& on_template = all_anchors[0].anchors[k].input_point;
-  Eigen::Vector3d on_remesh = Eigen::Vector3d::Zero();
-  int corner = 0;
-  for (VertexHandle v : source.fv_range(source.face_handle(on_template.face)))
-    on_remesh += on_template.bary[corner++] * remesh_vertices.row(v.idx()).transpose();
-  return (on_remesh - position(target, all_anchors[1].anchors[k].input_point)).norm();
 }
 
 // What every further try of map_pair maps again from.
@@ -459,6 +522,7 @@ void PairSeconds::add_stages(const PairSeconds& other) {
   relax += other.relax;
   compose += other.compose;
   untangle += other.untangle;
+  optimize_map += other.optimize_map;
   metrics += other.metrics;
 }
 

@@ -15,6 +15,7 @@
 #include "map/corner_report.h"
 #include "map/cross_map.h"
 #include "map/fold_report.h"
+#include "map/map_optimization.h"
 #include "map/remesh_quality.h"
 #include "map/remesh_untangling.h"
 #include "map/tip_anchors.h"
@@ -56,6 +57,14 @@ struct PairSettings {
   /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
   bool untangle = true;
   UntangleSettings untangling;  ///< options of that step
+  /// Optimize the composed map on the target surface, every template vertex but the anchors'
+  /// sliding across patch boundaries (map/map_optimization.h); off gives the layout's map.
+  bool optimize_map = true;
+  MapOptimizationSettings map_optimization;  ///< options of that step
+  /// For landmarks placed on scans: how far (target units) the optimization may move an anchor's
+  /// image from its landmark; 0 keeps every anchor exact. An anchor inside a template face (not
+  /// at a vertex) stays exact.
+  double anchor_slack = 0.0;
 };
 
 /// Wall-clock seconds of each stage of map_pair (not deterministic, never compared).
@@ -67,6 +76,7 @@ struct PairSeconds {
   double relax = 0.0;         ///< relaxing the patch maps (inside parameterize)
   double compose = 0.0;       ///< mapping every template vertex and curve point
   double untangle = 0.0;      ///< untangling the remesh (inside compose)
+  double optimize_map = 0.0;  ///< optimizing the map on the target surface (map/map_optimization.h)
   double metrics = 0.0;       ///< distortion and remesh quality
   double total = 0.0;         ///< all of map_pair
 
@@ -102,6 +112,18 @@ struct UntangleSummary {
   int rounds = 0;          ///< Gauss-Seidel rounds run
 };
 
+/// What optimizing the map on the target surface did (map/map_optimization.h); zeros when it
+/// was off.
+struct MapOptimizationSummary {
+  bool ran = false;
+  double energy_before = 0.0;  ///< mean energy per template area of the layout's map, over its faces that do not fold
+  double energy_after = 0.0;   ///< and of the optimized map (4 for an isometry up to scale)
+  int flipped_before = 0;      ///< remesh faces folded or collapsed before
+  int flipped_after = 0;       ///< and after (never more than before)
+  int sweeps = 0;              ///< sweeps over the free vertices
+  int moved_vertices = 0;      ///< template vertices whose image moved
+};
+
 /// Everything one template/target pair yields. With untangling on, the map is Gamma . phi
 /// (phi a homeomorphism of the template, map/remesh_untangling.h): the correspondence, remesh,
 /// curves and metrics all describe it.
@@ -120,6 +142,10 @@ struct PairMapping {
   std::vector<CornerMismatch> mismatched_corners;
   RelaxationSummary relaxation;      ///< how much relaxing the patch maps lowered their energy
   UntangleSummary untangling;        ///< how far the remesh's vertices were slid to unfold it
+  MapOptimizationSummary map_optimization;  ///< how optimizing the map on the target changed it
+  /// Per placed anchor (anchors[0] order): how far the map lands from the target's landmark
+  /// (target units; 0 unless PairSettings::anchor_slack lets anchors move).
+  std::vector<double> anchor_miss;
   std::vector<MappedCurve> curves;   ///< the template's feature curves on the target, in input order
   ConsistentLayoutResult layout;  ///< the optimized layout on both (refined) meshes, for exports and counts
   DomainOptimizationResult optimization;  ///< what the base-domain optimization did (swaps, merges, seconds)

@@ -139,6 +139,10 @@ RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>
     if (normal.dot(reference.normal(locations[t[0]], locations[t[1]], locations[t[2]])) < 0.0) {
       result.flipped_faces.push_back(static_cast<int>(f));
     }
+    const auto opposes = [&](int v) {
+      return normal.dot(to_eigen(target.calc_face_normal(target.face_handle(locations[v].face)))) < 0.0;
+    };
+    if (opposes(t[0]) && opposes(t[1]) && opposes(t[2])) ++result.strictly_folded_faces;
   }
   result.area_ratio = result.remesh_area / result.target_area;
   return result;

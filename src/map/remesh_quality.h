@@ -18,6 +18,10 @@ struct RemeshQualityResult {
   std::vector<int>
       flipped_faces;  ///< remesh faces whose normal has a negative dot with the reference normal, ascending
   int degenerate_faces = 0;  ///< remesh faces of zero area (neither flipped nor not)
+  /// Remesh faces folded by the strict count: the face's normal opposes the normal of the
+  /// target face under each of its three corners (a count that no choice of reference normal
+  /// can make smaller).
+  int strictly_folded_faces = 0;
   double remesh_area = 0.0;  ///< total area of the remesh, target units^2
   double target_area = 0.0;  ///< total area of the target mesh
   double area_ratio = 0.0;   ///< remesh_area / target_area (1 when the remesh covers the target once)

@@ -1,0 +1,528 @@
+#include "map/map_optimization.h"
+
+#include "core/errors.h"
+#include "core/stopwatch.h"
+#include "core/surface_walk.h"
+#include "map/foldover_free_energy.h"
+#include "map/remesh_quality.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace xparam {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// An orthonormal frame of the plane normal to `normal`, right-handed with it.
+struct PlaneFrame {
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  bool valid = false;
+  bool against_own = false;      // chord_edges: the triangle does not face along FaceReferences::own
+  bool against_corners = false;  // nor along FaceReferences::corners
+};
+
+PlaneFrame plane_frame(const Eigen::Vector3d& normal) {
+  PlaneFrame frame;
+  const double length = normal.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return frame;
+  const Eigen::Vector3d n = normal / length;
+  const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  frame.u = n.cross(helper).normalized();
+  frame.v = n.cross(frame.u);
+  frame.valid = true;
+  return frame;
+}
+
+// The directions a remesh face's image must face: the remesh's reference normal (its own fold
+// count, map/remesh_quality.h) and the sum of the normals of the target faces under its
+// corners (only a face facing away from that sum can be folded by the strict count,
+// RemeshQualityResult::strictly_folded_faces).
+struct FaceReferences {
+  Eigen::Vector3d own = Eigen::Vector3d::Zero();
+  Eigen::Vector3d corners = Eigen::Vector3d::Zero();
+};
+
+// The edge matrix [x1 - x0, x2 - x0] of a chord triangle in a frame of its own plane: its true
+// shape, oriented positively when it faces along both references and negatively (folded)
+// otherwise; the frame is invalid when it is collapsed or edge-on to either. The energy depends
+// on the shape alone, so its gradient lies in the triangle's plane: the frame can be held while
+// differentiating.
+Eigen::Matrix2d chord_edges(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2, const FaceReferences& references,
+                            PlaneFrame& frame) {
+  const Eigen::Vector3d normal = e1.cross(e2);
+  const double own = normal.dot(references.own);
+  const double corners = normal.dot(references.corners);
+  const double length = e1.norm();
+  frame.against_own = !(own > 0.0);
+  frame.against_corners = !(corners > 0.0);
+  frame.valid = own != 0.0 && corners != 0.0 && length > 0.0 && std::isfinite(own) && std::isfinite(corners);
+  Eigen::Matrix2d edges = Eigen::Matrix2d::Zero();
+  if (!frame.valid) return edges;
+  frame.u = e1 / length;
+  frame.v = (own > 0.0 && corners > 0.0 ? normal : Eigen::Vector3d(-normal)).normalized().cross(frame.u);
+  edges << length, e2.dot(frame.u), 0.0, e2.dot(frame.v);
+  return edges;
+}
+
+// A template face where a vertex sits: the face and the vertex's corner in it.
+struct Incidence {
+  int face = 0;
+  int corner = 0;
+};
+
+// A folded face's energy while the barrier holds (per unit weight): finite, so a folded face
+// neither freezes its vertices nor hides the rest of its ring's energy, and far above any
+// unfolded face's, so opening it pays and folding one never does.
+constexpr double kFoldedFaceEnergy = 1e6;
+
+// Sweeps the untangling phase may take, and after how many it gives up when the folds have
+// not become fewer.
+constexpr int kUntangleSweeps = 60;
+constexpr int kUntanglePatience = 15;
+
+class MapOptimizer {
+ public:
+  MapOptimizer(const Mesh& source, const std::vector<std::array<int, 3>>& faces, const Mesh& target,
+               std::vector<SurfacePoint> locations, const std::vector<PinnedVertex>& pinned,
+               const MapOptimizationSettings& settings)
+      : faces_(faces), target_(target), reference_(target), settings_(settings), locations_(std::move(locations)) {
+    const int n_vertices = static_cast<int>(locations_.size());
+    positions_.resize(n_vertices);
+    for (int v = 0; v < n_vertices; ++v) positions_[v] = position(target, locations_[v]);
+    measure_template(source);
+    target_normals_.reserve(target.n_faces());
+    for (FaceHandle f : target.faces()) target_normals_.push_back(to_eigen(target.calc_face_normal(f)));
+    incidences_.resize(n_vertices);
+    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+      for (int c = 0; c < 3; ++c) incidences_[faces_[f][c]].push_back({f, c});
+    }
+    pin_index_.assign(n_vertices, -1);
+    for (std::size_t k = 0; k < pinned.size(); ++k) pin_index_[pinned[k].vertex] = static_cast<int>(k);
+    pinned_ = pinned;
+    colour_free_vertices();
+    moved_.assign(n_vertices, 1);
+  }
+
+  MapOptimizationResult run() {
+    MapOptimizationResult result;
+    result.settings = settings_;
+    const std::vector<SurfacePoint> start = locations_;
+    result.flipped_before = count_folded();
+    result.distortion_before = mean_unfolded_energy();
+    int sweeps_left = settings_.max_sweeps;
+    if (result.flipped_before > 0) {
+      const int used = untangle(std::min(sweeps_left, kUntangleSweeps));
+      sweeps_left -= used;
+      result.sweeps += used;
+    }
+    // Lowering the energy, the barrier keeping every unfolded face unfolded.
+    eps_ = 0.0;
+    double energy = total_energy();
+    result.energy.push_back(energy);
+    std::fill(moved_.begin(), moved_.end(), 1);
+    for (; sweeps_left > 0; --sweeps_left) {
+      const bool any_moved = sweep();
+      ++result.sweeps;
+      const double was = energy;
+      energy = total_energy();
+      result.energy.push_back(energy);
+      if (!any_moved || was - energy <= settings_.tolerance * was) break;
+    }
+    result.flipped_after = count_folded();
+    result.distortion_after = mean_unfolded_energy();
+    for (std::size_t v = 0; v < locations_.size(); ++v) {
+      if (locations_[v].face != start[v].face || locations_[v].bary != start[v].bary) ++result.moved_vertices;
+    }
+    for (const PinnedVertex& pin : pinned_) result.anchor_miss.push_back((positions_[pin.vertex] - pin.landmark).norm());
+    result.locations = std::move(locations_);
+    result.positions = std::move(positions_);
+    return result;
+  }
+
+ private:
+  // Untangling (Garanzha et al.'s eps schedule): eps shrinks as the energy stops falling and the
+  // most folded face opens. Ends at the first sweep that leaves no fold, after `max_sweeps`, or
+  // when `kUntanglePatience` sweeps have not made the folds fewer; leaves the map with the fewest
+  // folds seen that has no more folds than the start against either reference (the start when
+  // none: a fold the anchors force is left to the barrier phase, which keeps it). Returns the
+  // sweeps run.
+  int untangle(int max_sweeps) {
+    std::vector<SurfacePoint> best = locations_;
+    const std::array<int, 2> at_start = count_folds_by_reference();
+    int best_folds = at_start[0] + at_start[1];
+    int best_sweep = 0;
+    eps_ = initial_eps(smallest_determinant());
+    double energy = total_energy();
+    int sweeps = 0;
+    while (sweeps < max_sweeps && sweeps - best_sweep < kUntanglePatience) {
+      sweep();
+      ++sweeps;
+      const std::array<int, 2> folds = count_folds_by_reference();
+      if (folds[0] <= at_start[0] && folds[1] <= at_start[1] && folds[0] + folds[1] < best_folds) {
+        best = locations_;
+        best_folds = folds[0] + folds[1];
+        best_sweep = sweeps;
+      }
+      const double min_det = smallest_determinant();
+      if (min_det > 0.0) break;  // no face folds by either reference
+      const double was = energy;
+      energy = total_energy();
+      const double sigma = std::max(1.0 - energy / was, 0.1);
+      const double mu = (1.0 - sigma) * foldover_chi(min_det, eps_);
+      if (min_det < mu) eps_ = 2.0 * std::sqrt(mu * (mu - min_det));
+      energy = total_energy();
+    }
+    locations_ = std::move(best);
+    for (std::size_t v = 0; v < locations_.size(); ++v) positions_[v] = position(target_, locations_[v]);
+    return sweeps;
+  }
+
+  // One sweep over the free vertices that may move (they or a neighbour moved in the last
+  // sweep), a colour at a time. Returns whether any vertex moved.
+  bool sweep() {
+    std::vector<char> active(moved_.size(), 0);
+    for (std::size_t v = 0; v < moved_.size(); ++v) {
+      if (!moved_[v]) continue;
+      active[v] = 1;
+      for (const Incidence& in : incidences_[v]) {
+        for (int u : faces_[in.face]) active[u] = 1;
+      }
+    }
+    std::fill(moved_.begin(), moved_.end(), 0);
+    for (const std::vector<int>& colour : colours_) {
+      tbb::parallel_for(0, static_cast<int>(colour.size()), [&](int k) {
+        if (active[colour[k]]) moved_[colour[k]] = move_vertex(colour[k]);
+      });
+    }
+    return std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
+  }
+
+  // Rest shapes: each template face's inverse edge matrix in a frame of its own plane, divided
+  // by the template-to-target scale, and its share of the template's area.
+  void measure_template(const Mesh& source) {
+    const int n_faces = static_cast<int>(faces_.size());
+    rest_inverse_.resize(n_faces);
+    weight_.resize(n_faces);
+    double template_area = 0.0;
+    for (int f = 0; f < n_faces; ++f) {
+      const Eigen::Vector3d a = position(source, source.vertex_handle(faces_[f][0]));
+      const Eigen::Vector3d e1 = position(source, source.vertex_handle(faces_[f][1])) - a;
+      const Eigen::Vector3d e2 = position(source, source.vertex_handle(faces_[f][2])) - a;
+      const Eigen::Vector3d normal = e1.cross(e2);
+      weight_[f] = 0.5 * normal.norm();
+      template_area += weight_[f];
+      const Eigen::Vector3d u = e1.normalized();
+      const Eigen::Vector3d w = normal.normalized().cross(u);
+      Eigen::Matrix2d edges;
+      edges << e1.dot(u), e2.dot(u), e1.dot(w), e2.dot(w);
+      rest_inverse_[f] = edges.inverse();
+    }
+    const double scale = std::sqrt(reference_.target_area() / template_area);
+    for (int f = 0; f < n_faces; ++f) {
+      rest_inverse_[f] /= scale;
+      weight_[f] /= template_area;
+    }
+  }
+
+  // Greedy colouring of the free vertices in index order: no two of a colour share a face.
+  void colour_free_vertices() {
+    const int n_vertices = static_cast<int>(locations_.size());
+    std::vector<int> colour(n_vertices, -1);
+    std::vector<int> seen_by;  // colour -> last vertex that saw it among its neighbours
+    for (int v = 0; v < n_vertices; ++v) {
+      if (!is_free(v)) continue;
+      for (const Incidence& in : incidences_[v]) {
+        for (int u : faces_[in.face]) {
+          if (u == v || colour[u] < 0) continue;
+          if (colour[u] >= static_cast<int>(seen_by.size())) seen_by.resize(colour[u] + 1, -1);
+          seen_by[colour[u]] = v;
+        }
+      }
+      int c = 0;
+      while (c < static_cast<int>(seen_by.size()) && seen_by[c] == v) ++c;
+      colour[v] = c;
+      if (c >= static_cast<int>(colours_.size())) colours_.resize(c + 1);
+      colours_[c].push_back(v);
+    }
+  }
+
+  bool is_free(int v) const { return pin_index_[v] < 0 || pinned_[pin_index_[v]].slack > 0.0; }
+
+  // The face's references at the current images, with `moved` (if >= 0) at `at`.
+  FaceReferences reference_normal(int f, int moved, const SurfacePoint& at) const {
+    const auto& t = faces_[f];
+    const auto location = [&](int v) -> const SurfacePoint& { return v == moved ? at : locations_[v]; };
+    return {reference_.normal(location(t[0]), location(t[1]), location(t[2])),
+            target_normals_[location(t[0]).face] + target_normals_[location(t[1]).face] +
+                target_normals_[location(t[2]).face]};
+  }
+
+  // The Jacobian of face f's map (see chord_edges), with `moved` (if >= 0) at `at`; `frame`
+  // receives the image's frame (invalid when the image is collapsed or edge-on).
+  Eigen::Matrix2d jacobian(int f, const FaceReferences& reference, int moved, const Eigen::Vector3d& at,
+                           PlaneFrame& frame) const {
+    const auto& t = faces_[f];
+    const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
+    return chord_edges(point(t[1]) - point(t[0]), point(t[2]) - point(t[0]), reference, frame) * rest_inverse_[f];
+  }
+
+  struct FaceValue {
+    double energy = 0.0;  // weighted
+    bool folded = false;  // against either reference, collapsed or edge-on
+    int against_own = 0;  // 1 when folded against the remesh's own reference normal (or collapsed)
+    int against_corners = 0;  // 1 when folded against the corners' target faces (or collapsed)
+  };
+
+  // Face f is folded for the optimizer when its image is folded, collapsed or edge-on against
+  // either reference (chord_edges).
+  FaceValue face_value(int f, const FaceReferences& reference, int moved, const Eigen::Vector3d& at) const {
+    PlaneFrame frame;
+    const Eigen::Matrix2d j = jacobian(f, reference, moved, at, frame);
+    FaceValue value;
+    value.folded = !frame.valid || !(j.determinant() > 0.0);
+    value.against_own = frame.against_own || !frame.valid;
+    value.against_corners = frame.against_corners || !frame.valid;
+    if (eps_ > 0.0) {
+      value.energy = weight_[f] * foldover_free_energy(j, settings_.area_weight, eps_);
+    } else {
+      value.energy = weight_[f] * (value.folded ? kFoldedFaceEnergy : foldover_free_energy(j, settings_.area_weight, 0.0));
+    }
+    return value;
+  }
+
+  double total_energy() const {
+    std::vector<double> energies(faces_.size());
+    tbb::parallel_for(0, static_cast<int>(faces_.size()),
+                      [&](int f) { energies[f] = face_value(f, reference_normal(f, -1, {}), -1, {}).energy; });
+    double sum = 0.0;
+    for (double e : energies) sum += e;  // in face order: the same at any thread count
+    return sum;
+  }
+
+  // The energy (eps = 0) per template area over the faces that do not fold.
+  double mean_unfolded_energy() const {
+    double energy = 0.0;
+    double weight = 0.0;
+    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+      PlaneFrame frame;
+      const FaceReferences reference = reference_normal(f, -1, {});
+      if (face_value(f, reference, -1, {}).folded) continue;
+      energy += weight_[f] * foldover_free_energy(jacobian(f, reference, -1, {}, frame), settings_.area_weight, 0.0);
+      weight += weight_[f];
+    }
+    return weight > 0.0 ? energy / weight : 0.0;
+  }
+
+  double determinant(int f) const {
+    PlaneFrame frame;
+    const Eigen::Matrix2d j = jacobian(f, reference_normal(f, -1, {}), -1, {}, frame);
+    return frame.valid ? j.determinant() : 0.0;
+  }
+
+  double smallest_determinant() const {
+    double smallest = kInfinity;
+    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) smallest = std::min(smallest, determinant(f));
+    return smallest;
+  }
+
+  int count_folded() const {
+    int folded = 0;
+    for (int f = 0; f < static_cast<int>(faces_.size()); ++f)
+      folded += face_value(f, reference_normal(f, -1, {}), -1, {}).folded;
+    return folded;
+  }
+
+  // Faces folded against each reference: what untangling lowers.
+  std::array<int, 2> count_folds_by_reference() const {
+    std::array<int, 2> folds{};
+    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+      const FaceValue value = face_value(f, reference_normal(f, -1, {}), -1, {});
+      folds[0] += value.against_own;
+      folds[1] += value.against_corners;
+    }
+    return folds;
+  }
+
+  // The first eps of the schedule: the most folded face's chi is a tenth of its |det|.
+  static double initial_eps(double min_det) {
+    const double depth = std::max(-min_det, 1e-3);
+    const double mu = 0.1 * depth;
+    return 2.0 * std::sqrt(mu * (mu + depth));
+  }
+
+  // Energy of v's faces with v's image at `at` (`references` the faces' references there), and
+  // how many are folded against each reference.
+  FaceValue ring_value(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at) const {
+    FaceValue ring;
+    for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
+      const FaceValue value = face_value(incidences_[v][k].face, references[k], v, at);
+      ring.energy += value.energy;
+      ring.folded = ring.folded || value.folded;
+      ring.against_own += value.against_own;
+      ring.against_corners += value.against_corners;
+    }
+    return ring;
+  }
+
+  // d(ring energy)/d(v's image) in 3-D, the reference normals held; folded faces contribute
+  // nothing while the barrier holds (their energy is constant).
+  Eigen::Vector3d ring_gradient(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at) const {
+    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
+      const Incidence& in = incidences_[v][k];
+      PlaneFrame frame;
+      const Eigen::Matrix2d j = jacobian(in.face, references[k], v, at, frame);
+      if (!frame.valid || (eps_ == 0.0 && !(j.determinant() > 0.0))) continue;
+      // J = [x1 - x0, x2 - x0] R: dE/d(edge matrix) = dE/dJ R^T.
+      const Eigen::Matrix2d by_edges = weight_[in.face] *
+                                       foldover_free_energy_gradient(j, settings_.area_weight, eps_) *
+                                       rest_inverse_[in.face].transpose();
+      const Eigen::Vector2d by_point =
+          in.corner == 0 ? Eigen::Vector2d(-by_edges.col(0) - by_edges.col(1)) : Eigen::Vector2d(by_edges.col(in.corner - 1));
+      gradient += by_point.x() * frame.u + by_point.y() * frame.v;
+    }
+    return gradient;
+  }
+
+  bool within_slack(int v, const Eigen::Vector3d& at) const {
+    const int pin = pin_index_[v];
+    return pin < 0 || (at - pinned_[pin].landmark).norm() <= pinned_[pin].slack;
+  }
+
+  // One Newton step of v's image in the plane of its target face, walked on the surface, with
+  // backtracking until its faces' energy falls (and, while the barrier holds, no more of them
+  // fold). Returns whether the image moved.
+  bool move_vertex(int v) {
+    const std::vector<Incidence>& ring = incidences_[v];
+    if (ring.empty()) return false;
+    const SurfacePoint& here = locations_[v];
+    const Eigen::Vector3d x = positions_[v];
+    std::vector<FaceReferences> references(ring.size());
+    for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face, -1, {});
+    const FaceValue ring_before = ring_value(v, references, x);
+    const double before = ring_before.energy;
+    if (!std::isfinite(before)) return false;
+
+    // The tangent plane: the target face under the image.
+    const PlaneFrame tangent = plane_frame(to_eigen(target_.calc_face_normal(target_.face_handle(here.face))));
+    if (!tangent.valid) return false;
+    // The step's scale: the mean length of v's edges (the shortest can be near 0 while a
+    // collapsed face opens again).
+    double edge_sum = 0.0;
+    int edge_count = 0;
+    for (const Incidence& in : ring) {
+      for (int u : faces_[in.face]) {
+        if (u == v) continue;
+        edge_sum += (positions_[u] - x).norm();
+        ++edge_count;
+      }
+    }
+    const double mean_edge = edge_sum / edge_count;
+    if (!(mean_edge > 0.0)) return false;
+    const auto in_plane = [&](const Eigen::Vector3d& g) { return Eigen::Vector2d(g.dot(tangent.u), g.dot(tangent.v)); };
+    const Eigen::Vector2d gradient = in_plane(ring_gradient(v, references, x));
+    if (!gradient.allFinite() || gradient.norm() == 0.0) return false;
+
+    // Finite-difference Hessian of the analytic gradient, made positive definite.
+    const double h = 1e-4 * mean_edge;
+    Eigen::Matrix2d hessian;
+    hessian.col(0) = (in_plane(ring_gradient(v, references, x + h * tangent.u)) - gradient) / h;
+    hessian.col(1) = (in_plane(ring_gradient(v, references, x + h * tangent.v)) - gradient) / h;
+    hessian = 0.5 * (hessian + hessian.transpose()).eval();
+    Eigen::Vector2d direction = -gradient;
+    if (hessian.allFinite()) {
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(hessian);
+      Eigen::Vector2d values = eigen.eigenvalues();
+      const double floor = std::max(1e-8 * std::abs(values.maxCoeff()), 1e-300);
+      values = values.cwiseMax(floor);
+      direction = -(eigen.eigenvectors() * values.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose()) *
+                  gradient;
+    }
+    // Never farther than half an edge in one step: the step stays near the ring.
+    const double length = direction.norm();
+    if (!(length > 0.0) || !std::isfinite(length)) return false;
+    if (length > 0.5 * mean_edge) direction *= 0.5 * mean_edge / length;
+    const double slope = gradient.dot(direction);
+    if (!(slope < 0.0)) return false;
+
+    const Eigen::Vector3d step = direction.x() * tangent.u + direction.y() * tangent.v;
+    std::vector<FaceReferences> moved_references(ring.size());
+    double fraction = 1.0;
+    for (int tries = 0; tries < 12; ++tries, fraction *= 0.5) {
+      const std::optional<SurfacePoint> there = walk_on_surface(target_, here, fraction * step);
+      if (!there) continue;
+      const Eigen::Vector3d y = position(target_, *there);
+      if (!within_slack(v, y)) continue;
+      for (std::size_t k = 0; k < ring.size(); ++k) moved_references[k] = reference_normal(ring[k].face, v, *there);
+      const FaceValue ring_after = ring_value(v, moved_references, y);
+      const double after = ring_after.energy;
+      // While the barrier holds, a folded face may change only by opening.
+      if (eps_ == 0.0 && (ring_after.against_own > ring_before.against_own ||
+                          ring_after.against_corners > ring_before.against_corners))
+        continue;
+      if (after < before + 1e-4 * fraction * slope) {
+        locations_[v] = *there;
+        positions_[v] = y;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  const std::vector<std::array<int, 3>>& faces_;
+  const Mesh& target_;
+  const RemeshReference reference_;
+  const MapOptimizationSettings settings_;
+  std::vector<SurfacePoint> locations_;
+  std::vector<Eigen::Vector3d> positions_;
+  std::vector<Eigen::Vector3d> target_normals_;  // unit, per target face
+  std::vector<Eigen::Matrix2d> rest_inverse_;
+  std::vector<double> weight_;
+  std::vector<std::vector<Incidence>> incidences_;
+  std::vector<int> pin_index_;  // per vertex: its index in pinned_, or -1
+  std::vector<PinnedVertex> pinned_;
+  std::vector<std::vector<int>> colours_;
+  std::vector<char> moved_;  // per vertex: whether it moved in the last sweep
+  double eps_ = 0.0;
+};
+
+}  // namespace
+
+MapOptimizationResult optimize_map(const Mesh& source, const std::vector<std::array<int, 3>>& faces,
+                                   const Mesh& target, std::vector<SurfacePoint> locations,
+                                   const std::vector<PinnedVertex>& pinned, const MapOptimizationSettings& settings) {
+  Stopwatch watch;
+  const int n_vertices = static_cast<int>(source.n_vertices());
+  if (static_cast<int>(locations.size()) != n_vertices) {
+    throw ParamError("map optimization: " + std::to_string(locations.size()) + " images for " +
+                     std::to_string(n_vertices) + " template vertices");
+  }
+  for (const auto& face : faces) {
+    for (int v : face) {
+      if (v < 0 || v >= n_vertices) throw ParamError("map optimization: face vertex " + std::to_string(v) + " out of range");
+    }
+  }
+  for (const SurfacePoint& location : locations) {
+    if (location.face < 0 || location.face >= static_cast<int>(target.n_faces()))
+      throw ParamError("map optimization: image on target face " + std::to_string(location.face) + " out of range");
+  }
+  for (const PinnedVertex& pin : pinned) {
+    if (pin.vertex < 0 || pin.vertex >= n_vertices)
+      throw ParamError("map optimization: pinned vertex " + std::to_string(pin.vertex) + " out of range");
+  }
+  MapOptimizer optimizer(source, faces, target, std::move(locations), pinned, settings);
+  MapOptimizationResult result = optimizer.run();
+  result.seconds = watch.lap();
+  return result;
+}
+
+}  // namespace xparam

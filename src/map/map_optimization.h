@@ -1,0 +1,94 @@
+#pragma once
+/// \file
+/// Optimizing the composed map on the target surface (ours, beyond the paper; ARCHITECTURE
+/// step 8d). The layout's map is a start only: it is built patch by patch inside curves fixed on
+/// both meshes, so it can be no better than the curves, and an unanchored protrusion (a finger,
+/// a toe) is squeezed where the curves sit differently on the two meshes. Here every template
+/// vertex's image but the anchors' is a target surface point that slides freely across patch
+/// boundaries, to lower the distortion of the remesh (template triangle -> the chord triangle of
+/// its three images), and no step ever folds a remesh face.
+///
+/// Energy of a template face f (area A_f) with Jacobian J (template triangle -> its image
+/// projected onto the plane normal to the remesh's reference normal, map/remesh_quality.h,
+/// divided by the template-to-target scale):
+///     E_f = (|J|_F^2 + lambda (det J^2 + 1)) / chi(det J, eps),  chi(D, eps) = (D + sqrt(eps^2 + D^2)) / 2
+/// (Garanzha, Kaporin, Kudryavtseva, Protais, Ray, Sokolov 2021, "Foldover-free maps in 50 lines
+/// of code"). With eps = 0 it is |J|^2 / det J (conformal distortion, >= 2) plus
+/// lambda (det J + 1 / det J) (area distortion, >= 2): a barrier, infinite on a folded or
+/// collapsed face, least (2 + 2 lambda) for a rotation. It is chosen over the symmetric
+/// Dirichlet energy because with eps > 0 it is finite and smooth on folded faces, so the same
+/// iterations that lower distortion also unfold a map that starts folded: eps follows the
+/// paper's schedule while faces are folded and is 0 from the first sweep that leaves none, after
+/// which the map never folds again (the barrier) and the energy never rises. Folds the anchors
+/// force (a misplaced landmark) stay; the barrier phase optimizes the rest around them.
+///
+/// Block coordinate descent: one vertex at a time, its neighbours held, a Newton step in the
+/// plane of the target face under its image (finite-difference Hessian of the analytic gradient,
+/// made positive definite), walked along the target surface (core/surface_walk.h), with a
+/// backtracking line search that takes only steps that lower its faces' energy. Vertices are
+/// coloured so no two of one colour share a face; a colour's vertices move in parallel, the
+/// colours in order, so the result is the same at any thread count.
+
+#include "core/mesh.h"
+#include "core/surface_point.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+namespace xparam {
+
+/// Options of optimize_map.
+struct MapOptimizationSettings {
+  int max_sweeps = 200;      ///< sweeps over every free vertex, at most
+  double tolerance = 1e-4;   ///< stop when a sweep lowers the mean energy by less than this fraction of it
+  double area_weight = 1.0;  ///< lambda: the area term's weight against the conformal term
+};
+
+/// A template vertex whose image is tied to a target landmark.
+struct PinnedVertex {
+  int vertex = -1;                                     ///< template vertex id
+  Eigen::Vector3d landmark = Eigen::Vector3d::Zero();  ///< the target point it belongs at
+  double slack = 0.0;  ///< how far (target units) its image may move from the landmark; 0: not at all
+};
+
+/// What optimize_map made.
+struct MapOptimizationResult {
+  std::vector<SurfacePoint> locations;     ///< #template V: each vertex's image on the target
+  std::vector<Eigen::Vector3d> positions;  ///< the same in 3-D
+  /// The energy the barrier phase lowers (a sum over faces of area share times E_f, a folded
+  /// face counting kFoldedFaceEnergy = 1e6), at its start and after each of its sweeps: never
+  /// rising.
+  std::vector<double> energy;
+  double distortion_before = 0.0;  ///< mean E_f (eps = 0) per template area over the faces that do not fold, at the start
+  double distortion_after = 0.0;   ///< and at the end (4 for an isometry up to scale)
+  /// Remesh faces folded, collapsed or edge-on at the start, against the remesh's reference
+  /// normal (map/remesh_quality.h) or the normals of the target faces under their corners (so a
+  /// map without one has no fold by the strict count either)
+  int flipped_before = 0;
+  int flipped_after = 0;           ///< and at the end: never more
+  int sweeps = 0;                  ///< sweeps run, untangling and barrier phases together
+  int moved_vertices = 0;          ///< vertices whose image moved
+  std::vector<double> anchor_miss; ///< per pinned vertex: distance of its image to its landmark
+  double seconds = 0.0;
+  MapOptimizationSettings settings;
+};
+
+/// Optimize the map template -> target given by `locations` (#template V target surface
+/// points, the remesh's vertices). The faces in `faces` are the template's (vertex ids, fv
+/// order); `pinned` vertices stay where they are, or within their slack of their landmark,
+/// every other vertex moves.
+///
+/// When the start folds, an untangling phase (eps > 0) runs first and the map with the fewest
+/// folds it reached is kept (the start when none had fewer); then the barrier phase (eps = 0)
+/// lowers the energy without folding any face that is not folded and without ever raising the
+/// energy, a folded face counting a constant that opening it lowers. So the result never folds
+/// more than the start.
+/// \throw ParamError when sizes differ or an index is out of range
+MapOptimizationResult optimize_map(const Mesh& source, const std::vector<std::array<int, 3>>& faces,
+                                   const Mesh& target, std::vector<SurfacePoint> locations,
+                                   const std::vector<PinnedVertex>& pinned,
+                                   const MapOptimizationSettings& settings = {});
+
+}  // namespace xparam

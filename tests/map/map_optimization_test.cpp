@@ -1,0 +1,236 @@
+#include "map/map_optimization.h"
+
+#include "core/errors.h"
+#include "core/surface_walk.h"
+#include "io/mesh_loader.h"
+#include "map/foldover_free_energy.h"
+#include "map/remesh_quality.h"
+#include "support/test_data.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <random>
+
+namespace xparam {
+namespace {
+
+TEST(FoldoverFreeEnergy, RotationsAreItsMinimumAndFoldsAreInfiniteWithoutEps) {
+  const double lambda = 1.0;
+  const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(0.7).toRotationMatrix();
+  EXPECT_NEAR(foldover_free_energy(rotation, lambda, 0.0), 4.0, 1e-14);
+  // A similarity costs area, a shear angles: both above 4 (hand-computed values).
+  EXPECT_NEAR(foldover_free_energy(2.0 * rotation, lambda, 0.0), 8.0 / 4.0 + 4.0 + 0.25, 1e-12);
+  Eigen::Matrix2d shear;
+  shear << 1.0, 0.5, 0.0, 1.0;
+  EXPECT_NEAR(foldover_free_energy(shear, lambda, 0.0), 2.25 + 2.0, 1e-12);
+  Eigen::Matrix2d mirror = Eigen::Matrix2d::Identity();
+  mirror(0, 0) = -1.0;
+  EXPECT_TRUE(std::isinf(foldover_free_energy(mirror, lambda, 0.0)));
+  EXPECT_TRUE(std::isfinite(foldover_free_energy(mirror, lambda, 0.1)));
+}
+
+TEST(FoldoverFreeEnergy, GradientMatchesCentralDifferences) {
+  Eigen::Matrix2d j;
+  j << 1.3, -0.4, 0.2, 0.7;
+  for (const double eps : {0.0, 0.05}) {
+    for (const Eigen::Matrix2d& at : {Eigen::Matrix2d(j), Eigen::Matrix2d(-j)}) {
+      if (eps == 0.0 && at.determinant() <= 0.0) continue;
+      const Eigen::Matrix2d gradient = foldover_free_energy_gradient(at, 1.0, eps);
+      for (int k = 0; k < 4; ++k) {
+        Eigen::Matrix2d step = Eigen::Matrix2d::Zero();
+        step(k / 2, k % 2) = 1e-6;
+        const double difference =
+            (foldover_free_energy(at + step, 1.0, eps) - foldover_free_energy(at - step, 1.0, eps)) / 2e-6;
+        EXPECT_NEAR(gradient(k / 2, k % 2), difference, 1e-5 * std::max(1.0, std::abs(difference)));
+      }
+    }
+  }
+}
+
+// The surface point at vertex `v`.
+SurfacePoint at_vertex(const Mesh& mesh, int v) {
+  const FaceHandle face = *mesh.vf_range(mesh.vertex_handle(v)).begin();
+  SurfacePoint point{face.idx(), Eigen::Vector3d::Zero()};
+  int corner = 0;
+  for (VertexHandle u : mesh.fv_range(face)) point.bary[corner++] = u.idx() == v ? 1.0 : 0.0;
+  return point;
+}
+
+std::vector<std::array<int, 3>> triangles_of(const Mesh& mesh) {
+  std::vector<std::array<int, 3>> triangles;
+  for (FaceHandle f : mesh.faces()) {
+    std::array<int, 3> t{};
+    int k = 0;
+    for (VertexHandle v : mesh.fv_range(f)) t[k++] = v.idx();
+    triangles.push_back(t);
+  }
+  return triangles;
+}
+
+// Faces folded by the remesh's own count, collapsed, or folded by the strict count.
+int folded(const std::vector<std::array<int, 3>>& faces, const std::vector<SurfacePoint>& locations,
+           const Mesh& target) {
+  std::vector<Eigen::Vector3d> positions;
+  for (const SurfacePoint& p : locations) positions.push_back(position(target, p));
+  const RemeshQualityResult quality = measure_remesh_quality(faces, positions, locations, target);
+  return static_cast<int>(quality.flipped_faces.size()) + quality.degenerate_faces + quality.strictly_folded_faces;
+}
+
+// Spot against a rotated, scaled, moved copy of itself: the true map takes vertex v to vertex
+// v and is an isometry up to scale, the energy's one minimum. The start slides every image but
+// the pinned ones by a random step of `amplitude` times the mean edge along the target.
+struct SimilarityCase {
+  Mesh source;
+  Mesh target;
+  std::vector<std::array<int, 3>> faces;
+  std::vector<SurfacePoint> truth;
+  std::vector<SurfacePoint> start;
+  std::vector<PinnedVertex> pinned;
+  double mean_edge = 0.0;  // target units
+
+  explicit SimilarityCase(double amplitude) {
+    source = load_mesh(test::data_path("spot_low_resolution.obj")).mesh;
+    target = source;
+    const Eigen::Matrix3d rotation = Eigen::AngleAxisd(0.8, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    for (VertexHandle v : target.vertices())
+      target.set_point(v, to_point(1.7 * rotation * position(source, v) + Eigen::Vector3d(0.3, -2.0, 1.0)));
+    faces = triangles_of(source);
+    for (EdgeHandle e : target.edges()) mean_edge += target.calc_edge_length(e);
+    mean_edge /= static_cast<double>(target.n_edges());
+    const int n = static_cast<int>(source.n_vertices());
+    for (int v = 0; v < n; ++v) truth.push_back(at_vertex(target, v));
+    for (int v = 0; v < n; v += n / 12) pinned.push_back({v, position(target, truth[v]), 0.0});
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
+    start = truth;
+    std::vector<bool> is_pinned(n, false);
+    for (const PinnedVertex& pin : pinned) is_pinned[pin.vertex] = true;
+    for (int v = 0; v < n; ++v) {
+      const double a = angle(random);
+      if (is_pinned[v]) continue;
+      const Eigen::Vector3d normal = to_eigen(target.calc_face_normal(target.face_handle(truth[v].face)));
+      const Eigen::Vector3d u = normal.unitOrthogonal();
+      const Eigen::Vector3d w = normal.normalized().cross(u);
+      const Eigen::Vector3d step = amplitude * mean_edge * (std::cos(a) * u + std::sin(a) * w);
+      start[v] = walk_on_surface(target, truth[v], step).value();
+    }
+  }
+
+  double mean_error(const std::vector<Eigen::Vector3d>& positions) const {
+    double sum = 0.0;
+    for (std::size_t v = 0; v < positions.size(); ++v) sum += (positions[v] - position(target, truth[v])).norm();
+    return sum / static_cast<double>(positions.size());
+  }
+};
+
+TEST(MapOptimization, RecoversASimilarityFromAPerturbedStartWithoutEverFolding) {
+  const SimilarityCase pair(0.2);
+  ASSERT_EQ(folded(pair.faces, pair.start, pair.target), 0);
+  std::vector<Eigen::Vector3d> start_positions;
+  for (const SurfacePoint& p : pair.start) start_positions.push_back(position(pair.target, p));
+  MapOptimizationSettings settings;
+  settings.tolerance = 1e-9;
+  settings.max_sweeps = 400;
+  const MapOptimizationResult result =
+      optimize_map(pair.source, pair.faces, pair.target, pair.start, pair.pinned, settings);
+  EXPECT_EQ(result.flipped_before, 0);
+  EXPECT_EQ(result.flipped_after, 0);
+  EXPECT_EQ(folded(pair.faces, result.locations, pair.target), 0);
+  ASSERT_GE(result.energy.size(), 2u);
+  for (std::size_t k = 1; k < result.energy.size(); ++k) EXPECT_LE(result.energy[k], result.energy[k - 1]);
+  // An isometry up to scale has energy 4 (per template area).
+  EXPECT_NEAR(result.energy.back(), 4.0, 1e-3);
+  for (const PinnedVertex& pin : pair.pinned) {
+    EXPECT_EQ(result.locations[pin.vertex].face, pair.start[pin.vertex].face);
+    EXPECT_EQ(result.locations[pin.vertex].bary, pair.start[pin.vertex].bary);
+  }
+  const double before = pair.mean_error(start_positions);
+  const double after = pair.mean_error(result.positions);
+  EXPECT_LT(after, 0.02 * before) << "mean error " << before << " -> " << after;
+}
+
+TEST(MapOptimization, SameResultAtOneAndTwoThreads) {
+  const SimilarityCase pair(0.2);
+  MapOptimizationSettings settings;
+  settings.max_sweeps = 20;
+  const auto run = [&](int threads) {
+    const tbb::global_control control(tbb::global_control::max_allowed_parallelism, threads);
+    return optimize_map(pair.source, pair.faces, pair.target, pair.start, pair.pinned, settings);
+  };
+  const MapOptimizationResult one = run(1);
+  const MapOptimizationResult two = run(2);
+  ASSERT_EQ(one.locations.size(), two.locations.size());
+  for (std::size_t v = 0; v < one.locations.size(); ++v) {
+    EXPECT_EQ(one.locations[v].face, two.locations[v].face);
+    EXPECT_EQ(one.locations[v].bary, two.locations[v].bary);
+  }
+  EXPECT_EQ(one.energy, two.energy);
+}
+
+TEST(MapOptimization, AnchorsWithSlackMoveTowardTheMapButStayWithinIt) {
+  SimilarityCase pair(0.0);
+  // Landmarks placed off the truth, as on a scan: each pin's landmark and start are 0.3 edges away.
+  std::vector<PinnedVertex> noisy = pair.pinned;
+  for (PinnedVertex& pin : noisy) {
+    const SurfacePoint off =
+        walk_on_surface(pair.target, pair.truth[pin.vertex], Eigen::Vector3d(1, 1, 1).normalized() * 0.3 * pair.mean_edge)
+            .value();
+    pair.start[pin.vertex] = off;
+    pin.landmark = position(pair.target, off);
+  }
+  const auto truth_distance = [&](const MapOptimizationResult& result) {
+    double sum = 0.0;
+    for (const PinnedVertex& pin : noisy)
+      sum += (result.positions[pin.vertex] - position(pair.target, pair.truth[pin.vertex])).norm();
+    return sum;
+  };
+  MapOptimizationSettings settings;
+  settings.tolerance = 1e-9;
+  const MapOptimizationResult exact = optimize_map(pair.source, pair.faces, pair.target, pair.start, noisy, settings);
+  for (std::size_t k = 0; k < noisy.size(); ++k) EXPECT_EQ(exact.anchor_miss[k], 0.0);
+  const double slack = 0.2 * pair.mean_edge;
+  for (PinnedVertex& pin : noisy) pin.slack = slack;
+  const MapOptimizationResult loose = optimize_map(pair.source, pair.faces, pair.target, pair.start, noisy, settings);
+  ASSERT_EQ(loose.anchor_miss.size(), noisy.size());
+  for (std::size_t k = 0; k < noisy.size(); ++k) {
+    EXPECT_LE(loose.anchor_miss[k], slack);
+    EXPECT_NEAR(loose.anchor_miss[k], (loose.positions[noisy[k].vertex] - noisy[k].landmark).norm(), 1e-15);
+  }
+  EXPECT_LT(truth_distance(loose), 0.9 * truth_distance(exact));
+  EXPECT_LT(loose.energy.back(), exact.energy.back());
+  EXPECT_EQ(loose.flipped_after, 0);
+}
+
+TEST(MapOptimization, UnfoldsAStartThatFolds) {
+  SimilarityCase pair(0.0);
+  // Throw a few images far across their rings: their faces fold.
+  for (int v : {101, 333, 620}) {
+    const Eigen::Vector3d normal = to_eigen(pair.target.calc_face_normal(pair.target.face_handle(pair.truth[v].face)));
+    pair.start[v] = walk_on_surface(pair.target, pair.truth[v], 2.5 * pair.mean_edge * normal.unitOrthogonal()).value();
+  }
+  const int folded_at_start = folded(pair.faces, pair.start, pair.target);
+  ASSERT_GT(folded_at_start, 0);
+  const MapOptimizationResult result = optimize_map(pair.source, pair.faces, pair.target, pair.start, pair.pinned);
+  // It counts a face folded against either reference (the remesh's own count's or its corners'
+  // target faces), so at least those the remesh's own count finds.
+  std::vector<Eigen::Vector3d> start_positions;
+  for (const SurfacePoint& p : pair.start) start_positions.push_back(position(pair.target, p));
+  const RemeshQualityResult start_quality = measure_remesh_quality(pair.faces, start_positions, pair.start, pair.target);
+  EXPECT_GE(result.flipped_before, static_cast<int>(start_quality.flipped_faces.size()) + start_quality.degenerate_faces);
+  EXPECT_EQ(result.flipped_after, 0);
+  EXPECT_EQ(folded(pair.faces, result.locations, pair.target), 0);
+  EXPECT_LT(pair.mean_error(result.positions), 0.05 * pair.mean_edge);
+}
+
+TEST(MapOptimization, RefusesImagesOfTheWrongSize) {
+  const SimilarityCase pair(0.0);
+  std::vector<SurfacePoint> fewer = pair.start;
+  fewer.pop_back();
+  EXPECT_THROW(optimize_map(pair.source, pair.faces, pair.target, fewer, pair.pinned), ParamError);
+}
+
+}  // namespace
+}  // namespace xparam
