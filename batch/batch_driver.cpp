@@ -122,6 +122,10 @@ std::string batch_options_json(const PairSettings& settings) {
   options["tip_anchors"] = settings.tip_anchors;
   options["untangle"] = settings.untangle;
   options["release_anchors"] = settings.max_released_anchors;
+  options["optimize_map"] = settings.optimize_map;
+  options["map_sweeps"] = settings.map_optimization.max_sweeps;
+  options["anchor_slack"] = settings.anchor_slack;
+  options["max_maps"] = settings.max_maps;
   return options.dump();
 }
 

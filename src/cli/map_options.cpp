@@ -65,6 +65,12 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
                   "For landmarks placed by hand on scans: how far (target units) optimizing the map may move "
                   "each anchor's image from its landmark; the miss is reported per anchor (default 0: exact)")
       ->check(CLI::Range(0.0, 1e300));
+  command
+      .add_option("--max-maps", settings.max_maps,
+                  "Whole maps a pair may make in all, the first included: the second and third layouts, the "
+                  "helper anchors and the releases above each make one or more, and none starts once they are "
+                  "made (metrics.json maps.limit_reached; default 6)")
+      ->check(CLI::Range(1, 1000));
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");

@@ -97,7 +97,11 @@ class MapOptimizer {
       : faces_(faces), target_(target), reference_(target), settings_(settings), locations_(std::move(locations)) {
     const int n_vertices = static_cast<int>(locations_.size());
     positions_.resize(n_vertices);
-    for (int v = 0; v < n_vertices; ++v) positions_[v] = position(target, locations_[v]);
+    normals_.resize(n_vertices);
+    for (int v = 0; v < n_vertices; ++v) {
+      positions_[v] = position(target, locations_[v]);
+      normals_[v] = reference_.interpolated_normal(locations_[v]);
+    }
     measure_template(source);
     target_normals_.reserve(target.n_faces());
     for (FaceHandle f : target.faces()) target_normals_.push_back(to_eigen(target.calc_face_normal(f)));
@@ -182,7 +186,10 @@ class MapOptimizer {
       energy = total_energy();
     }
     locations_ = std::move(best);
-    for (std::size_t v = 0; v < locations_.size(); ++v) positions_[v] = position(target_, locations_[v]);
+    for (std::size_t v = 0; v < locations_.size(); ++v) {
+      positions_[v] = position(target_, locations_[v]);
+      normals_[v] = reference_.interpolated_normal(locations_[v]);
+    }
     return sweeps;
   }
 
@@ -257,13 +264,16 @@ class MapOptimizer {
 
   bool is_free(int v) const { return pin_index_[v] < 0 || pinned_[pin_index_[v]].slack > 0.0; }
 
-  // The face's references at the current images, with `moved` (if >= 0) at `at`.
-  FaceReferences reference_normal(int f, int moved, const SurfacePoint& at) const {
+  // The face's references at the current images, with `moved` (if >= 0) at `at`, where the
+  // target's interpolated normal is `at_normal`.
+  FaceReferences reference_normal(int f, int moved = -1, const SurfacePoint& at = {},
+                                  const Eigen::Vector3d& at_normal = Eigen::Vector3d::Zero()) const {
     const auto& t = faces_[f];
-    const auto location = [&](int v) -> const SurfacePoint& { return v == moved ? at : locations_[v]; };
-    return {reference_.normal(location(t[0]), location(t[1]), location(t[2])),
-            target_normals_[location(t[0]).face] + target_normals_[location(t[1]).face] +
-                target_normals_[location(t[2]).face]};
+    const auto location = [&](int v) -> const SurfacePoint* { return v == moved ? &at : &locations_[v]; };
+    const auto normal = [&](int v) -> const Eigen::Vector3d* { return v == moved ? &at_normal : &normals_[v]; };
+    return {reference_.normal({location(t[0]), location(t[1]), location(t[2])}, {normal(t[0]), normal(t[1]), normal(t[2])}),
+            target_normals_[location(t[0])->face] + target_normals_[location(t[1])->face] +
+                target_normals_[location(t[2])->face]};
   }
 
   // The Jacobian of face f's map (see chord_edges), with `moved` (if >= 0) at `at`; `frame`
@@ -302,7 +312,7 @@ class MapOptimizer {
   double total_energy() const {
     std::vector<double> energies(faces_.size());
     tbb::parallel_for(0, static_cast<int>(faces_.size()),
-                      [&](int f) { energies[f] = face_value(f, reference_normal(f, -1, {}), -1, {}).energy; });
+                      [&](int f) { energies[f] = face_value(f, reference_normal(f), -1, {}).energy; });
     double sum = 0.0;
     for (double e : energies) sum += e;  // in face order: the same at any thread count
     return sum;
@@ -314,7 +324,7 @@ class MapOptimizer {
     double weight = 0.0;
     for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
       PlaneFrame frame;
-      const FaceReferences reference = reference_normal(f, -1, {});
+      const FaceReferences reference = reference_normal(f);
       if (face_value(f, reference, -1, {}).folded) continue;
       energy += weight_[f] * foldover_free_energy(jacobian(f, reference, -1, {}, frame), settings_.area_weight, 0.0);
       weight += weight_[f];
@@ -324,7 +334,7 @@ class MapOptimizer {
 
   double determinant(int f) const {
     PlaneFrame frame;
-    const Eigen::Matrix2d j = jacobian(f, reference_normal(f, -1, {}), -1, {}, frame);
+    const Eigen::Matrix2d j = jacobian(f, reference_normal(f), -1, {}, frame);
     return frame.valid ? j.determinant() : 0.0;
   }
 
@@ -337,7 +347,7 @@ class MapOptimizer {
   int count_folded() const {
     int folded = 0;
     for (int f = 0; f < static_cast<int>(faces_.size()); ++f)
-      folded += face_value(f, reference_normal(f, -1, {}), -1, {}).folded;
+      folded += face_value(f, reference_normal(f), -1, {}).folded;
     return folded;
   }
 
@@ -345,7 +355,7 @@ class MapOptimizer {
   std::array<int, 2> count_folds_by_reference() const {
     std::array<int, 2> folds{};
     for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
-      const FaceValue value = face_value(f, reference_normal(f, -1, {}), -1, {});
+      const FaceValue value = face_value(f, reference_normal(f), -1, {});
       folds[0] += value.against_own;
       folds[1] += value.against_corners;
     }
@@ -407,7 +417,7 @@ class MapOptimizer {
     const SurfacePoint& here = locations_[v];
     const Eigen::Vector3d x = positions_[v];
     std::vector<FaceReferences> references(ring.size());
-    for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face, -1, {});
+    for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face);
     const FaceValue ring_before = ring_value(v, references, x);
     const double before = ring_before.energy;
     if (!std::isfinite(before)) return false;
@@ -462,7 +472,9 @@ class MapOptimizer {
       if (!there) continue;
       const Eigen::Vector3d y = position(target_, *there);
       if (!within_slack(v, y)) continue;
-      for (std::size_t k = 0; k < ring.size(); ++k) moved_references[k] = reference_normal(ring[k].face, v, *there);
+      const Eigen::Vector3d there_normal = reference_.interpolated_normal(*there);
+      for (std::size_t k = 0; k < ring.size(); ++k)
+        moved_references[k] = reference_normal(ring[k].face, v, *there, there_normal);
       const FaceValue ring_after = ring_value(v, moved_references, y);
       const double after = ring_after.energy;
       // While the barrier holds, a folded face may change only by opening.
@@ -472,6 +484,7 @@ class MapOptimizer {
       if (after < before + 1e-4 * fraction * slope) {
         locations_[v] = *there;
         positions_[v] = y;
+        normals_[v] = there_normal;
         return true;
       }
     }
@@ -484,6 +497,7 @@ class MapOptimizer {
   const MapOptimizationSettings settings_;
   std::vector<SurfacePoint> locations_;
   std::vector<Eigen::Vector3d> positions_;
+  std::vector<Eigen::Vector3d> normals_;         // the target's interpolated normal at each image
   std::vector<Eigen::Vector3d> target_normals_;  // unit, per target face
   std::vector<Eigen::Matrix2d> rest_inverse_;
   std::vector<double> weight_;

@@ -98,6 +98,19 @@ std::vector<int> patches_of_folds(const std::vector<std::array<int, 3>>& faces,
   return patches;
 }
 
+// The whole maps (a layout built, optimized, parameterized, composed and optimized on the
+// target) a pair may still make (PairSettings::max_maps): the first map is always made, a retry
+// only while some are left. Counted in maps, not seconds, so the results stay deterministic.
+struct MapBudget {
+  int left = 0;
+  bool reached = false;  // a retry was not made for want of maps
+
+  bool allows_another() {
+    if (left <= 0) reached = true;
+    return left > 0;
+  }
+};
+
 // A base domain and the map on it: the layout, its cross map and the template's images after
 // the undo rounds. The layout lives with the caller (`cross` points into it, and OpenMesh meshes
 // are copied, not moved, so it is built where it stays).
@@ -148,7 +161,8 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
                        const std::vector<std::array<int, 3>>& faces, const Mesh& target,
                        const std::array<PlacedAnchors, 2>& anchors, const std::array<const Mesh*, 2>& refined,
                        const DomainOptimizationSettings& optimization, const PairSettings& settings,
-                       PairSeconds& seconds, const std::function<void(const char*)>& stage) {
+                       PairSeconds& seconds, MapBudget& budget, const std::function<void(const char*)>& stage) {
+  --budget.left;
   MapAttempt attempt;
   attempt.layout = &layout_storage;
   Stopwatch watch;
@@ -256,7 +270,7 @@ double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>
 // map_pair on the anchors as given (no anchor released).
 PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
                                 const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
-                                const PairSettings& settings, const StageCallback& on_stage) {
+                                const PairSettings& settings, MapBudget& budget, const StageCallback& on_stage) {
   const auto stage = [&](const char* name) {
     if (on_stage) on_stage(name);
   };
@@ -277,7 +291,7 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
   const std::vector<std::array<int, 3>> faces = triangles_of(source);
   const std::vector<std::string> names = anchor_names(result.anchors[0]);
   MapAttempt attempt = attempt_map(result.layout, source, faces, target, result.anchors, refined,
-                                   settings.optimization, settings, result.seconds, stage);
+                                   settings.optimization, settings, result.seconds, budget, stage);
   // The later attempts' layouts, when there are any (a CrossMap points into its layout).
   std::array<ConsistentLayoutResult, 2> later_layouts;
   // Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
@@ -298,10 +312,10 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
     if (folded != near_folds) corners_kept_at.push_back(folded);  // else the same layout again
     DomainOptimizationSettings keeping = first;
     keeping.stretching.keep_corners = true;
-    for (std::size_t k = 0; k < corners_kept_at.size() && attempt.folds() > 0; ++k) {
+    for (std::size_t k = 0; k < corners_kept_at.size() && attempt.folds() > 0 && budget.allows_another(); ++k) {
       keeping.stretching.keep_corners_at = corners_kept_at[k];
       MapAttempt retry = attempt_map(later_layouts[k], source, faces, target, result.anchors, refined,
-                                     keeping, settings, result.seconds, stage);
+                                     keeping, settings, result.seconds, budget, stage);
       ++result.layouts_built;
       if (retry.folds() < attempt.folds()) {
         attempt = std::move(retry);
@@ -412,10 +426,11 @@ bool folds_less(const PairMapping& other, const PairMapping& current) {
 // map_through_anchors, or nothing when those anchors cannot be laid out or parameterized.
 std::optional<PairMapping> map_if_possible(const Mesh& source, const AnchorSet& source_anchors,
                                            const Mesh& target, const AnchorSet& target_anchors,
-                                           const std::vector<FeatureCurve>& curves,
-                                           const PairSettings& settings, const StageCallback& on_stage) {
+                                           const std::vector<FeatureCurve>& curves, const PairSettings& settings,
+                                           MapBudget& budget, const StageCallback& on_stage) {
   try {
-    return map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, on_stage);
+    return map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, budget,
+                               on_stage);
   } catch (const LayoutError&) {
     return std::nullopt;
   } catch (const ParamError&) {
@@ -430,6 +445,7 @@ struct PairInputs {
   const std::vector<FeatureCurve>& curves;
   const PairSettings& settings;
   const StageCallback& on_stage;
+  MapBudget& budget;
 };
 
 // A map and the anchor sets it was made through.
@@ -451,7 +467,7 @@ std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const 
   const std::vector<std::string> names = anchor_names(current.map.anchors[0]);
   for (const double reach : in.settings.tip_anchor_reaches) {
     const PairMapping& to_beat = best ? best->map : current.map;
-    if (to_beat.quality.flipped_faces.empty()) break;
+    if (to_beat.quality.flipped_faces.empty() || !in.budget.allows_another()) break;
     std::vector<TipAnchor> helpers = tip_anchors(current.map.layout.layout, {&in.source, &in.target}, names,
                                                  current.map.mismatched_corners, reach);
     AnchoredMap helped{{}, current.source_anchors, current.target_anchors};
@@ -462,7 +478,7 @@ std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const 
     if (in.on_stage) in.on_stage("mapping again with helper anchors behind the tips");
     std::optional<PairMapping> trial =
         map_if_possible(in.source, helped.source_anchors, in.target, helped.target_anchors, in.curves,
-                        in.settings, in.on_stage);
+                        in.settings, in.budget, in.on_stage);
     if (!trial) continue;
     seconds.add_stages(trial->seconds);
     if (!folds_less(*trial, to_beat)) continue;
@@ -490,13 +506,14 @@ std::optional<AnchoredMap> release_anchors(const PairInputs& in, const AnchoredM
     bool helped = false;
     const std::vector<AnchorFolds> candidates = current.map.folds_by_anchor;
     for (const AnchorFolds& candidate : candidates) {
+      if (!in.budget.allows_another()) break;
       AnchoredMap fewer{{},
                         without_anchor(current.source_anchors, candidate.name),
                         without_anchor(current.target_anchors, candidate.name)};
       if (in.on_stage) in.on_stage("mapping again without anchor \"" + candidate.name + "\"");
       std::optional<PairMapping> trial =
           map_if_possible(in.source, fewer.source_anchors, in.target, fewer.target_anchors, in.curves,
-                          in.settings, in.on_stage);
+                          in.settings, in.budget, in.on_stage);
       if (!trial) continue;  // the anchors left cannot be laid out or parameterized: this anchor stays
       seconds.add_stages(trial->seconds);
       if (!folds_less(*trial, current.map)) continue;
@@ -530,9 +547,10 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
                      const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
                      const PairSettings& settings, const StageCallback& on_stage) {
   Stopwatch total;
-  const PairInputs in{source, target, curves, settings, on_stage};
+  MapBudget budget{settings.max_maps};
+  const PairInputs in{source, target, curves, settings, on_stage, budget};
   AnchoredMap plain{
-      map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, on_stage),
+      map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, budget, on_stage),
       source_anchors, target_anchors};
   PairSeconds seconds = plain.map.seconds;
   std::optional<AnchoredMap> best;  // a map that folds less than `plain`, when one was found
@@ -556,6 +574,8 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
         miss_distance(anchor.name, plain.map.anchors, source, target, result.remesh_vertices);
   result.seconds = seconds;
   result.seconds.total = total.lap();
+  result.maps_made = settings.max_maps - budget.left;
+  result.map_limit_reached = budget.reached;
   return result;
 }
 

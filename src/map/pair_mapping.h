@@ -54,6 +54,11 @@ struct PairSettings {
   /// release (map without) an anchor near the folds and map again, up to this many anchors;
   /// 0 keeps every anchor. See map_pair.
   int max_released_anchors = 0;
+  /// Whole maps (layout, base domain, patch maps, composition, optimization on the target) the
+  /// pair may make in all, the first included: the later layouts, helper anchors and releases
+  /// above each make one or more, and none starts once they are spent (reported as
+  /// PairMapping::map_limit_reached). In maps, not seconds, so results stay deterministic.
+  int max_maps = 6;
   /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
   bool untangle = true;
   UntangleSettings untangling;  ///< options of that step
@@ -158,6 +163,8 @@ struct PairMapping {
   /// The anchors the map no longer passes through, in the order they were released; empty
   /// unless PairSettings::max_released_anchors > 0 and the map with every anchor folds.
   std::vector<ReleasedAnchor> released_anchors;
+  int maps_made = 1;                ///< whole maps made for this pair (PairSettings::max_maps)
+  bool map_limit_reached = false;   ///< a retry was left out because PairSettings::max_maps were made
   /// template and target anchors as placed (snap distances, warnings); released anchors are not
   /// among them
   std::array<PlacedAnchors, 2> anchors;
@@ -190,6 +197,8 @@ using StageCallback = std::function<void(const std::string& stage)>;
 /// limit. A release whose layout cannot be built is passed over. Helpers behind tips are then
 /// tried on the released map, and the better of the two ways (helpers alone, or releases then
 /// helpers) is kept by the same rule.
+///
+/// Every try above is a whole map; settings.max_maps bounds how many the pair makes in all.
 /// \throw InputError for anchors that do not match or cannot be placed
 /// \throw LayoutError when the meshes cannot be laid out (genus, components)
 /// \throw ParamError when a patch cannot be parameterized

@@ -43,44 +43,62 @@ Eigen::Vector3d interpolate_normal(const Mesh& target, const std::vector<Eigen::
   return length > 0.0 ? Eigen::Vector3d(normal / length) : Eigen::Vector3d::Zero();
 }
 
-// Target faces a surface point lies on: its face, plus the neighbours that share the vertex or
-// the edge it sits on (barycentrics within `tolerance` of 1 or 0), sorted ascending.
-std::vector<int> faces_touching(const Mesh& target, const SurfacePoint& point, double tolerance) {
-  const FaceHandle face = target.face_handle(point.face);
+// The corners of point's face that carry it: one when it sits on a vertex (barycentric within
+// `tolerance` of 1), two on an edge (one within `tolerance` of 0), three inside. Returns how many.
+int carrying_corners(const Mesh& target, const SurfacePoint& point, double tolerance, VertexHandle (&carriers)[3]) {
   VertexHandle corners[3];
   int k = 0;
-  for (VertexHandle v : target.fv_range(face)) corners[k++] = v;
-  std::vector<int> faces;
+  for (VertexHandle v : target.fv_range(target.face_handle(point.face))) corners[k++] = v;
   for (int i = 0; i < 3; ++i) {
     if (point.bary[i] >= 1.0 - tolerance) {
-      for (FaceHandle f : target.vf_range(corners[i])) faces.push_back(f.idx());
+      carriers[0] = corners[i];
+      return 1;
     }
   }
-  if (faces.empty()) {
-    faces.push_back(point.face);
-    for (int i = 0; i < 3; ++i) {
-      if (point.bary[i] > tolerance) continue;
-      // On the edge opposite corner i: add the face across it.
-      const HalfedgeHandle h = target.find_halfedge(corners[(i + 1) % 3], corners[(i + 2) % 3]);
-      const FaceHandle across = target.opposite_face_handle(h);
-      if (across.is_valid()) faces.push_back(across.idx());
-    }
+  int n = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (point.bary[i] > tolerance) carriers[n++] = corners[i];
   }
-  std::sort(faces.begin(), faces.end());
-  return faces;
+  return n;
 }
 
-// The lowest-index target face all three corners lie on, or -1.
+// Whether a point carried by `carriers` lies on target face `face`: the face holds them all.
+bool lies_on(const Mesh& target, const VertexHandle (&carriers)[3], int n_carriers, FaceHandle face) {
+  for (int i = 0; i < n_carriers; ++i) {
+    bool held = false;
+    for (VertexHandle v : target.fv_range(face)) held = held || v == carriers[i];
+    if (!held) return false;
+  }
+  return true;
+}
+
+// The lowest-index target face all three corners lie on (a point on a target vertex or edge lies
+// on every face around it), or -1. Without allocation: it runs for every face the map
+// optimization tries.
 int common_face(const Mesh& target, const std::array<const SurfacePoint*, 3>& corners) {
   constexpr double kOnBoundary = 1e-9;
-  std::vector<int> common = faces_touching(target, *corners[0], kOnBoundary);
-  for (int i = 1; i < 3 && !common.empty(); ++i) {
-    const std::vector<int> next = faces_touching(target, *corners[i], kOnBoundary);
-    std::vector<int> both;
-    std::set_intersection(common.begin(), common.end(), next.begin(), next.end(), std::back_inserter(both));
-    common.swap(both);
+  VertexHandle carriers[3][3];
+  int n[3];
+  for (int i = 0; i < 3; ++i) n[i] = carrying_corners(target, *corners[i], kOnBoundary, carriers[i]);
+  int best = -1;
+  const auto consider = [&](FaceHandle face) {
+    if (!face.is_valid() || (best >= 0 && face.idx() >= best)) return;
+    if (face.idx() != corners[1]->face && !lies_on(target, carriers[1], n[1], face)) return;
+    if (face.idx() != corners[2]->face && !lies_on(target, carriers[2], n[2], face)) return;
+    best = face.idx();
+  };
+  // The faces the first corner lies on: round its vertex, beside its edge, or its own.
+  if (n[0] == 1) {
+    for (FaceHandle f : target.vf_range(carriers[0][0])) consider(f);
+  } else {
+    consider(target.face_handle(corners[0]->face));
+    if (n[0] == 2) {
+      const HalfedgeHandle h = target.find_halfedge(carriers[0][0], carriers[0][1]);
+      consider(target.face_handle(h));
+      consider(target.opposite_face_handle(h));
+    }
   }
-  return common.empty() ? -1 : common.front();
+  return best;
 }
 
 }  // namespace
@@ -98,6 +116,13 @@ Eigen::Vector3d RemeshReference::normal(const SurfacePoint& a, const SurfacePoin
   if (shared >= 0) return to_eigen(target_->calc_face_normal(target_->face_handle(shared)));
   return interpolate_normal(*target_, vertex_normals_, a) + interpolate_normal(*target_, vertex_normals_, b) +
          interpolate_normal(*target_, vertex_normals_, c);
+}
+
+Eigen::Vector3d RemeshReference::normal(const std::array<const SurfacePoint*, 3>& corners,
+                                        const std::array<const Eigen::Vector3d*, 3>& interpolated) const {
+  const int shared = common_face(*target_, corners);
+  if (shared >= 0) return to_eigen(target_->calc_face_normal(target_->face_handle(shared)));
+  return *interpolated[0] + *interpolated[1] + *interpolated[2];
 }
 
 RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>& faces,

@@ -39,6 +39,11 @@ class RemeshReference {
   /// \pre every face index valid
   Eigen::Vector3d normal(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c) const;
 
+  /// The same, with the interpolated normals at the three corners given (interpolated_normal),
+  /// for callers that keep them.
+  Eigen::Vector3d normal(const std::array<const SurfacePoint*, 3>& corners,
+                         const std::array<const Eigen::Vector3d*, 3>& interpolated) const;
+
   /// The target's interpolated unit normal at a point (see measure_remesh_quality; zero where it
   /// vanishes). \pre point.face valid
   Eigen::Vector3d interpolated_normal(const SurfacePoint& point) const;
