@@ -30,7 +30,7 @@ PLY_TYPES = dict(zip('char int8 uchar uint8 short int16 ushort uint16 int int32 
 
 
 class MeshError(Exception):
-    pass
+    """A mesh file that cannot be read; the message names the problem."""
 
 
 def fan(poly):
@@ -53,9 +53,9 @@ def load_off(data):
     lines = [t for t in (l.split('#')[0].split() for l in data.decode('utf-8', 'replace').splitlines()) if t]
     if not lines or not lines[0][0].endswith('OFF'):
         raise MeshError('missing OFF header')
-    head = lines[0][1:] or lines[1]
-    body = lines[1:] if lines[0][1:] else lines[2:]
-    nv, nf = int(head[0]), int(head[1])
+    if len(lines[0]) == 1:  # counts on the line after "OFF"
+        lines[:2] = [lines[0] + lines[1]]
+    nv, nf, body = int(lines[0][1]), int(lines[0][2]), lines[1:]
     if len(body) < nv + nf:
         raise MeshError('truncated: expected %d vertex and %d face lines' % (nv, nf))
     verts = [tuple(float(x) for x in l[:3]) for l in body[:nv]]
@@ -77,11 +77,9 @@ def load_ply(data):
             fmt = t[1]
         elif t and t[0] == 'element':
             elems.append((t[1], int(t[2]), []))
-        elif t and t[0] == 'property':
-            if t[1] == 'list':
-                elems[-1][2].append((t[4], PLY_TYPES[t[2]], PLY_TYPES[t[3]]))
-            else:
-                elems[-1][2].append((t[2], None, PLY_TYPES[t[1]]))
+        elif t and t[0] == 'property':  # (name, list count type or None, value type)
+            elems[-1][2].append((t[4], PLY_TYPES[t[2]], PLY_TYPES[t[3]]) if t[1] == 'list'
+                                else (t[2], None, PLY_TYPES[t[1]]))
     if fmt == 'ascii':
         toks = iter(data[body:].split())
         def read(t):
@@ -142,8 +140,7 @@ def render(verts, faces, colors, cam, W, H, flat, edges):
         cx = x * r[0] + y * r[1] + z * r[2]
         cy = x * u[0] + y * u[1] + z * u[2]
         P.append((cx, cy, x * b[0] + y * b[1] + z * b[2], W / 2 + cx * s, H / 2 - cy * s))
-    fb = bytearray(bytes((40, 42, 48)) * (W * H))
-    zb = [-math.inf] * (W * H)
+    fb, zb = bytearray(bytes((40, 42, 48)) * (W * H)), [-math.inf] * (W * H)
     for k, (i0, i1, i2) in enumerate(faces):
         if not (near[i0] or near[i1] or near[i2]):
             continue
@@ -192,10 +189,7 @@ def render(verts, faces, colors, cam, W, H, flat, edges):
                 i = row + x
                 if z > zb[i]:
                     zb[i] = z
-                    if edges and min(d0 + dx * (x - xa) for d0, dx in d) < 0.6:
-                        fb[3 * i:3 * i + 3] = dark
-                    else:
-                        fb[3 * i:3 * i + 3] = col
+                    fb[3 * i:3 * i + 3] = dark if edges and min(d0 + dx * (x - xa) for d0, dx in d) < 0.6 else col
                 z += zx
     return fb
 
@@ -221,19 +215,13 @@ def floats(n, desc, lo=-1e300, hi=1e300, sep=','):
     return parse
 
 
-class Parser(argparse.ArgumentParser):
-    def error(self, message):  # usage errors exit with code 1 (argparse's default is 2)
-        self.print_usage(sys.stderr)
-        sys.exit('%s: error: %s' % (self.prog, message))
-
-
 def main(argv):
     for k in range(len(argv) - 2, -1, -1):  # let "--focus -0.8,1,0" work, not only "--focus=..."
         if argv[k] in ('--focus', '--radius', '--view', '--size', '--flat-color'):
             argv[k:k + 2] = [argv[k] + '=' + argv[k + 1]]
-    ap = Parser(prog='render_mesh.py', description='Render triangle meshes to a PNG, one panel per mesh.')
-    ap.add_argument('out', help='output PNG path')
-    ap.add_argument('meshes', nargs='+', metavar='MESH', help='OBJ, OFF or PLY mesh')
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument('out', metavar='OUT.png')
+    ap.add_argument('meshes', nargs='+', metavar='MESH')
     ap.add_argument('--focus', metavar='X,Y,Z', type=floats(3, 'three numbers X,Y,Z'))
     ap.add_argument('--radius', metavar='R', type=floats(1, 'a positive number', 1e-300))
     ap.add_argument('--view', metavar='AZ,EL', type=floats(2, 'AZIMUTH,ELEVATION in degrees'),
@@ -242,18 +230,19 @@ def main(argv):
                     default=[800, 800])
     ap.add_argument('--flat-color', metavar='R,G,B', type=floats(3, 'R,G,B in 0..255', 0, 255),
                     default=[200, 200, 200])
-    ap.add_argument('--edges', action='store_true', help='draw a thin dark wireframe')
-    a = ap.parse_args(argv)
+    ap.add_argument('--edges', action='store_true')
+    try:
+        a = ap.parse_args(argv)
+    except SystemExit as ex:  # usage errors exit with 1 (argparse uses 2); -h still exits 0
+        sys.exit(1 if ex.code else 0)
     (W, H), meshes = map(int, a.size), []
     for path in a.meshes:
         try:
             meshes.append(load_mesh(path))
         except MeshError as ex:
             sys.exit('render_mesh.py: %s: %s' % (path, ex))
-    verts0 = meshes[0][0]
-    used = {i for tri in meshes[0][1] for i in tri}
-    lo = [min(verts0[i][j] for i in used) for j in range(3)]
-    hi = [max(verts0[i][j] for i in used) for j in range(3)]
+    used = [meshes[0][0][i] for i in {i for tri in meshes[0][1] for i in tri}]
+    lo, hi = [min(c) for c in zip(*used)], [max(c) for c in zip(*used)]
     focus = a.focus or [(l + h) / 2 for l, h in zip(lo, hi)]
     radius = a.radius or (math.dist(lo, hi) / 2 or 1.0)
     az, el = (math.radians(v) for v in a.view)

@@ -103,8 +103,6 @@ class MapOptimizer {
       normals_[v] = reference_.interpolated_normal(locations_[v]);
     }
     measure_template(source);
-    target_normals_.reserve(target.n_faces());
-    for (FaceHandle f : target.faces()) target_normals_.push_back(to_eigen(target.calc_face_normal(f)));
     incidences_.resize(n_vertices);
     for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
       for (int c = 0; c < 3; ++c) incidences_[faces_[f][c]].push_back({f, c});
@@ -271,9 +269,13 @@ class MapOptimizer {
     const auto& t = faces_[f];
     const auto location = [&](int v) -> const SurfacePoint* { return v == moved ? &at : &locations_[v]; };
     const auto normal = [&](int v) -> const Eigen::Vector3d* { return v == moved ? &at_normal : &normals_[v]; };
-    return {reference_.normal({location(t[0]), location(t[1]), location(t[2])}, {normal(t[0]), normal(t[1]), normal(t[2])}),
-            target_normals_[location(t[0])->face] + target_normals_[location(t[1])->face] +
-                target_normals_[location(t[2])->face]};
+    const std::array<const SurfacePoint*, 3> corners = {location(t[0]), location(t[1]), location(t[2])};
+    // On one target face both references are that face's normal (RemeshQualityResult).
+    const int shared = reference_.shared_face(corners);
+    if (shared >= 0) return {reference_.face_normal(shared), reference_.face_normal(shared)};
+    return {*normal(t[0]) + *normal(t[1]) + *normal(t[2]),
+            reference_.face_normal(corners[0]->face) + reference_.face_normal(corners[1]->face) +
+                reference_.face_normal(corners[2]->face)};
   }
 
   // The Jacobian of face f's map (see chord_edges), with `moved` (if >= 0) at `at`; `frame`
@@ -498,7 +500,6 @@ class MapOptimizer {
   std::vector<SurfacePoint> locations_;
   std::vector<Eigen::Vector3d> positions_;
   std::vector<Eigen::Vector3d> normals_;         // the target's interpolated normal at each image
-  std::vector<Eigen::Vector3d> target_normals_;  // unit, per target face
   std::vector<Eigen::Matrix2d> rest_inverse_;
   std::vector<double> weight_;
   std::vector<std::vector<Incidence>> incidences_;

@@ -105,6 +105,12 @@ int common_face(const Mesh& target, const std::array<const SurfacePoint*, 3>& co
 
 RemeshReference::RemeshReference(const Mesh& target) : target_(&target) {
   vertex_normals_ = vertex_normals(target, target_area_);
+  face_normals_.reserve(target.n_faces());
+  for (FaceHandle f : target.faces()) face_normals_.push_back(to_eigen(target.calc_face_normal(f)));
+}
+
+int RemeshReference::shared_face(const std::array<const SurfacePoint*, 3>& corners) const {
+  return common_face(*target_, corners);
 }
 
 Eigen::Vector3d RemeshReference::interpolated_normal(const SurfacePoint& point) const {
@@ -113,7 +119,7 @@ Eigen::Vector3d RemeshReference::interpolated_normal(const SurfacePoint& point) 
 
 Eigen::Vector3d RemeshReference::normal(const SurfacePoint& a, const SurfacePoint& b, const SurfacePoint& c) const {
   const int shared = common_face(*target_, {&a, &b, &c});
-  if (shared >= 0) return to_eigen(target_->calc_face_normal(target_->face_handle(shared)));
+  if (shared >= 0) return face_normals_[shared];
   return interpolate_normal(*target_, vertex_normals_, a) + interpolate_normal(*target_, vertex_normals_, b) +
          interpolate_normal(*target_, vertex_normals_, c);
 }
@@ -121,7 +127,7 @@ Eigen::Vector3d RemeshReference::normal(const SurfacePoint& a, const SurfacePoin
 Eigen::Vector3d RemeshReference::normal(const std::array<const SurfacePoint*, 3>& corners,
                                         const std::array<const Eigen::Vector3d*, 3>& interpolated) const {
   const int shared = common_face(*target_, corners);
-  if (shared >= 0) return to_eigen(target_->calc_face_normal(target_->face_handle(shared)));
+  if (shared >= 0) return face_normals_[shared];
   return *interpolated[0] + *interpolated[1] + *interpolated[2];
 }
 
@@ -161,11 +167,13 @@ RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>
       ++result.degenerate_faces;
       continue;
     }
-    if (normal.dot(reference.normal(locations[t[0]], locations[t[1]], locations[t[2]])) < 0.0) {
+    const std::array<const SurfacePoint*, 3> corners = {&locations[t[0]], &locations[t[1]], &locations[t[2]]};
+    if (normal.dot(reference.normal(*corners[0], *corners[1], *corners[2])) < 0.0) {
       result.flipped_faces.push_back(static_cast<int>(f));
     }
+    const int shared = reference.shared_face(corners);
     const auto opposes = [&](int v) {
-      return normal.dot(to_eigen(target.calc_face_normal(target.face_handle(locations[v].face)))) < 0.0;
+      return normal.dot(reference.face_normal(shared >= 0 ? shared : locations[v].face)) < 0.0;
     };
     if (opposes(t[0]) && opposes(t[1]) && opposes(t[2])) ++result.strictly_folded_faces;
   }

@@ -19,8 +19,8 @@ struct RemeshQualityResult {
       flipped_faces;  ///< remesh faces whose normal has a negative dot with the reference normal, ascending
   int degenerate_faces = 0;  ///< remesh faces of zero area (neither flipped nor not)
   /// Remesh faces folded by the strict count: the face's normal opposes the normal of the
-  /// target face under each of its three corners (a count that no choice of reference normal
-  /// can make smaller).
+  /// target face under each of its three corners (when all three lie on one target face, that
+  /// face is the one under each).
   int strictly_folded_faces = 0;
   double remesh_area = 0.0;  ///< total area of the remesh, target units^2
   double target_area = 0.0;  ///< total area of the target mesh
@@ -44,6 +44,13 @@ class RemeshReference {
   Eigen::Vector3d normal(const std::array<const SurfacePoint*, 3>& corners,
                          const std::array<const Eigen::Vector3d*, 3>& interpolated) const;
 
+  /// The lowest-index target face all three points lie on (a point on a target vertex or edge
+  /// lies on every face around it), or -1: where the reference normal is that face's.
+  int shared_face(const std::array<const SurfacePoint*, 3>& corners) const;
+
+  /// Unit normal of target face `face`.
+  Eigen::Vector3d face_normal(int face) const { return face_normals_[face]; }
+
   /// The target's interpolated unit normal at a point (see measure_remesh_quality; zero where it
   /// vanishes). \pre point.face valid
   Eigen::Vector3d interpolated_normal(const SurfacePoint& point) const;
@@ -54,6 +61,7 @@ class RemeshReference {
  private:
   const Mesh* target_;
   std::vector<Eigen::Vector3d> vertex_normals_;  ///< #target V, unit area-weighted vertex normals
+  std::vector<Eigen::Vector3d> face_normals_;    ///< #target F, unit
   double target_area_ = 0.0;
 };
 

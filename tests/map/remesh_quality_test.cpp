@@ -71,6 +71,7 @@ TEST(RemeshQuality, OctahedronOnItselfHasNoFlipAndFullArea) {
   const RemeshQualityResult r =
       measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
   EXPECT_TRUE(r.flipped_faces.empty());
+  EXPECT_EQ(r.strictly_folded_faces, 0);
   EXPECT_EQ(r.degenerate_faces, 0);
   // Eight equilateral faces of side sqrt 2: area 8 * sqrt(3)/4 * 2 = 4 sqrt 3.
   EXPECT_NEAR(r.target_area, 4.0 * std::sqrt(3.0), 1e-14);
@@ -91,6 +92,7 @@ TEST(RemeshQuality, ReflectedOctahedronIsFlippedEverywhere) {
   const RemeshQualityResult r =
       measure_remesh_quality(remesh.faces, remesh.positions, remesh.locations, target);
   EXPECT_EQ(r.flipped_faces, (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_EQ(r.strictly_folded_faces, 8);  // each on its own target face, which it opposes
   EXPECT_NEAR(r.area_ratio, 1.0, 1e-15);
 }
 
