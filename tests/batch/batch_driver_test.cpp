@@ -22,11 +22,20 @@ const PreparedTemplate& man() {
   return prepared;
 }
 
+// The map without its optimization on the target, for the tests of the archive's bookkeeping
+// (resume, shards): it is a few times faster, and what they check does not depend on the map.
+PairSettings quick() {
+  PairSettings settings;
+  settings.optimize_map = false;
+  return settings;
+}
+
 BatchSummary run(const path& targets, const path& archive, int threads, const Shard& shard = {},
-                 const BatchProgressCallback& progress = {}) {
+                 const BatchProgressCallback& progress = {}, const PairSettings& pair = {}) {
   BatchSettings settings;
   settings.archive = archive;
   settings.threads = threads;
+  settings.pair = pair;
   return run_batch(man(), plan_batch(discover_targets(targets), shard, {}, false), settings, progress);
 }
 
@@ -97,19 +106,19 @@ TEST(BatchDriver, ResumeCompletesOnlyWhatIsMissing) {
   test::add_broken_targets(dir / "targets");
   std::filesystem::remove(dir / "targets" / "truncated.obj");
   std::filesystem::remove(dir / "targets" / "truncated.anchors.json");
-  run(dir / "targets", dir / "full.h5", 2);
+  run(dir / "targets", dir / "full.h5", 2, {}, {}, quick());
 
   // An interrupted run: one target committed as a part, no final assembly (as after SIGKILL).
   {
-    const ArchiveProvenance provenance = current_provenance(batch_options_json({}));
+    const ArchiveProvenance provenance = current_provenance(batch_options_json(quick()));
     BatchArchive archive = BatchArchive::create(dir / "resumed.h5", man().record, provenance);
     const std::vector<TargetSpec> targets = discover_targets(dir / "targets");
     for (const TargetSpec& t : targets)
-      if (t.name == "man_bent" || t.name == "torus") archive.commit(run_target(man(), t));
+      if (t.name == "man_bent" || t.name == "torus") archive.commit(run_target(man(), t, quick()));
   }
   EXPECT_EQ(ArchiveReader(dir / "resumed.h5").targets().size(), 0u);  // opens: the initial assembly
 
-  const BatchSummary resumed = resume(dir / "targets", dir / "resumed.h5", false);
+  const BatchSummary resumed = resume(dir / "targets", dir / "resumed.h5", false, quick());
   EXPECT_EQ(resumed.ran, 3u);  // woman, no_anchors, unknown_name
   EXPECT_EQ(resumed.kept, 2u);
   EXPECT_FALSE(outcome(resumed, "man_bent").ran);
@@ -119,14 +128,14 @@ TEST(BatchDriver, ResumeCompletesOnlyWhatIsMissing) {
   test::expect_same_datasets(dir / "full.h5", dir / "resumed.h5");
 
   // Everything is committed now: only the failed ones rerun, and only when asked.
-  EXPECT_EQ(resume(dir / "targets", dir / "resumed.h5", false).ran, 0u);
-  const BatchSummary retried = resume(dir / "targets", dir / "resumed.h5", true);
+  EXPECT_EQ(resume(dir / "targets", dir / "resumed.h5", false, quick()).ran, 0u);
+  const BatchSummary retried = resume(dir / "targets", dir / "resumed.h5", true, quick());
   EXPECT_EQ(retried.ran, 3u);
   EXPECT_EQ(retried.failed, 3u);
   test::expect_same_datasets(dir / "full.h5", dir / "resumed.h5");
 
   // Other method options than the archive was started with: refused, nothing changes.
-  PairSettings other;
+  PairSettings other = quick();
   other.layout.greedy_diagonals = false;
   EXPECT_THROW(resume(dir / "targets", dir / "resumed.h5", true, other), ArchiveError);
 }
@@ -135,11 +144,11 @@ TEST(BatchDriver, ShardsMergeIntoTheDatasetsOfOneRun) {
   const path dir = test::fresh_temp_dir("driver_shards");
   test::copy_sample_targets(dir / "targets", {"woman_turned", "man_bent"});
   test::add_broken_targets(dir / "targets");
-  run(dir / "targets", dir / "single.h5", 2);
+  run(dir / "targets", dir / "single.h5", 2, {}, {}, quick());
   std::vector<path> shards;
   for (int i = 0; i < 3; ++i) {
     shards.push_back(dir / ("shard_" + std::to_string(i) + ".h5"));
-    const BatchSummary summary = run(dir / "targets", shards.back(), 1, {i, 3});
+    const BatchSummary summary = run(dir / "targets", shards.back(), 1, {i, 3}, {}, quick());
     EXPECT_EQ(summary.discovered, 6u);
     EXPECT_EQ(summary.targets.size(), 2u);
   }
