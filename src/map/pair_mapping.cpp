@@ -120,8 +120,9 @@ struct MapAttempt {
   std::unique_ptr<CrossMap> cross;
   ComposedImages composed;
   std::optional<MapOptimizationResult> optimized;  // the map optimized on the target, when asked
+  int optimized_folds = 0;  // its flipped remesh faces (the remesh's own count, as flipped_after)
 
-  int folds() const { return optimized ? optimized->flipped_after : composed.untangled.flipped_after; }
+  int folds() const { return optimized ? optimized_folds : composed.untangled.flipped_after; }
 
   // Where the map puts the template's vertices on the target, and those points in 3-D.
   std::vector<SurfacePoint> locations() const {
@@ -220,6 +221,9 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
     attempt.optimized = optimize_map(source, faces, target, attempt.locations(),
                                      pinned_vertices(anchors, source, target, settings.anchor_slack),
                                      settings.map_optimization);
+    attempt.optimized_folds = static_cast<int>(
+        measure_remesh_quality(faces, attempt.optimized->positions, attempt.optimized->locations, target)
+            .flipped_faces.size());
     seconds.optimize_map += watch.lap();
   }
   return attempt;
