@@ -49,7 +49,8 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
           "For scans whose landmarks disagree with the template's: when the remesh still folds, map "
           "without an anchor near the folds, one at a time, up to N anchors, keeping each release that "
           "folds less with the area ratio within 2%; the released anchors and how far the map lands "
-          "from them are reported (default 0: every anchor is kept)")
+          "from them are reported (default 0: every anchor is kept; each try is a whole map, counted against "
+          "--max-maps)")
       ->check(CLI::Range(0, 1000));
   command.add_flag(
       "--optimize-map,!--no-optimize-map", settings.optimize_map,
