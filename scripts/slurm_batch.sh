@@ -18,6 +18,8 @@
 #   XPARAM_CURVES        feature curves of the template (optional)
 #   XPARAM_SHARDS        N (default: SLURM_ARRAY_TASK_COUNT inside a task, else 4 like --array above)
 #   XPARAM_THREADS       -j of each shard (default: SLURM_CPUS_PER_TASK, else 1)
+#   XPARAM_OPTIONS       further options of `xparam batch` for every shard, split at spaces
+#                        (e.g. "--no-optimize-map --max-maps 3")
 #   XPARAM               the xparam program (default: `xparam` on PATH)
 # A shard runs with --resume: resubmitting after a node failure completes only what is missing.
 # The array uses afterany, not afterok: a shard with failed targets exits 2 (they are recorded
@@ -48,6 +50,11 @@ run_shard() {
                  --resume --shard "$task/$shards" --out "$shard_dir/shard_$task.h5"
                  --summary "$shard_dir/shard_$task.summary.json")
   [[ -n ${XPARAM_CURVES:-} ]] && options+=(--curves "$XPARAM_CURVES")
+  if [[ -n ${XPARAM_OPTIONS:-} ]]; then
+    local extra
+    read -ra extra <<< "$XPARAM_OPTIONS"
+    options+=("${extra[@]}")
+  fi
   mkdir -p "$shard_dir"
   exec "$xparam" batch "${options[@]}"
 }
