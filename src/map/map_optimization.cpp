@@ -372,13 +372,12 @@ class MapOptimizer {
   }
 
   // Energy of v's faces with v's image at `at` (`references` the faces' references there), and
-  // how many are folded against each reference.
+  // how many are folded against each reference (`folded` unset).
   FaceValue ring_value(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at) const {
     FaceValue ring;
     for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
       const FaceValue value = face_value(incidences_[v][k].face, references[k], v, at);
       ring.energy += value.energy;
-      ring.folded = ring.folded || value.folded;
       ring.against_own += value.against_own;
       ring.against_corners += value.against_corners;
     }

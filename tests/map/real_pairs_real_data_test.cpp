@@ -168,14 +168,6 @@ ShrecPair load_shrec_pair(const std::filesystem::path& data, const std::string& 
   return pair;
 }
 
-// Mean distance from each template vertex's image to its true counterpart on the target.
-double mean_truth_distance(const PairMapping& map, const Mesh& target, const std::vector<int>& truth) {
-  double sum = 0.0;
-  for (Eigen::Index v = 0; v < map.remesh_vertices.rows(); ++v)
-    sum += (map.remesh_vertices.row(v).transpose() - position(target, VertexHandle(truth[v]))).norm();
-  return sum / static_cast<double>(map.remesh_vertices.rows());
-}
-
 // SHREC'19 shape 1 with the CAESAR landmarks on one layout: the layout's map squeezes the left
 // hand (E_L2 34) and folds 17 faces by the strict count; optimized on the target it stretches
 // little (E_L2 measured 1.53), folds no more by either count, keeps the area and the anchors,
@@ -199,7 +191,8 @@ TEST(ShrecHuman, OptimizingTheMapUnsqueezesTheHand) {
   EXPECT_LE(after.quality.flipped_faces.size(), before.quality.flipped_faces.size());
   EXPECT_LT(after.quality.strictly_folded_faces, before.quality.strictly_folded_faces);
   EXPECT_NEAR(after.quality.area_ratio, 1.0, 0.02);
-  EXPECT_LT(mean_truth_distance(after, target.mesh, truth), mean_truth_distance(before, target.mesh, truth));
+  EXPECT_LT(test::distance_to_truth(after, target.mesh, truth).mean,
+            test::distance_to_truth(before, target.mesh, truth).mean);
   EXPECT_LT(after.map_optimization.energy_after, after.map_optimization.energy_before);
   for (double miss : after.anchor_miss) EXPECT_LT(miss, 1e-12);
 }
