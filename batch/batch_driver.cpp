@@ -120,10 +120,12 @@ std::string batch_options_json(const PairSettings& settings) {
   options["relax"] = settings.cross_map.relax;
   options["second_layout"] = settings.retry_keeping_corners;
   options["tip_anchors"] = settings.tip_anchors;
+  options["extremity_anchors"] = settings.extremity_anchors;
   options["untangle"] = settings.untangle;
   options["release_anchors"] = settings.max_released_anchors;
   options["optimize_map"] = settings.optimize_map;
   options["map_sweeps"] = settings.map_optimization.max_sweeps;
+  options["map_coverage"] = settings.map_optimization.coverage_weight;
   options["anchor_slack"] = settings.anchor_slack;
   options["max_maps"] = settings.max_maps;
   return options.dump();

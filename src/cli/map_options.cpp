@@ -43,6 +43,11 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "When the remesh still folds next to anchors whose layout corners disagree between the meshes "
       "(a different patch wraps round a tip on each), map again through a helper anchor behind each "
       "such tip on both meshes, and keep that map when it folds less (default on)");
+  command.add_flag(
+      "--extremity-anchors,!--no-extremity-anchors", settings.extremity_anchors,
+      "Find the tips of protrusions without a landmark (fingers, toes) on both meshes, match them "
+      "through the first map, and map again through them as helper anchors; keep that map when it is "
+      "less stretched and folds no more (default on; one more whole map, counted against --max-maps)");
   command
       .add_option(
           "--release-anchors", settings.max_released_anchors,
@@ -61,6 +66,11 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       .add_option("--map-sweeps", settings.map_optimization.max_sweeps,
                   "Sweeps over the template's vertices that optimizing the map runs at most (default 200)")
       ->check(CLI::Range(0, 100000));
+  command
+      .add_option("--map-coverage", settings.map_optimization.coverage_weight,
+                  "Weight of the pull of target vertices the remesh leaves out (a finger it cuts off) against "
+                  "the distortion while optimizing the map (default 10; 0: none)")
+      ->check(CLI::Range(0.0, 1e6));
   command
       .add_option("--anchor-slack", settings.anchor_slack,
                   "For landmarks placed by hand on scans: how far (target units) optimizing the map may move "

@@ -103,6 +103,17 @@ nlohmann::json helpers_json(const std::vector<TipAnchor>& helpers, const LoadedM
   return list;
 }
 
+nlohmann::json extremity_anchors_json(const std::vector<ExtremityAnchor>& tips) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const ExtremityAnchor& tip : tips) {
+    list.push_back({{"anchor", tip.specs[0].name},
+                    {"template_vertex", std::get<AnchorVertex>(tip.specs[0].location).index},
+                    {"target_vertex", std::get<AnchorVertex>(tip.specs[1].location).index},
+                    {"mismatch", number(tip.mismatch)}});
+  }
+  return list;
+}
+
 // Per anchor: how far the map lands from the target's landmark (0 up to rounding for an exact anchor).
 nlohmann::json anchor_miss_json(const PairMapping& mapping) {
   nlohmann::json misses = nlohmann::json::object();
@@ -126,6 +137,10 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
       {"folds_by_anchor", folds_json(mapping.folds_by_anchor)},
       {"mismatched_corners", corners_json(mapping.mismatched_corners)},
       {"area_ratio", number(mapping.quality.area_ratio)},
+      {"coverage",
+       {{"max_gap", number(mapping.coverage.max_gap)},
+        {"uncovered_area", number(mapping.coverage.uncovered_area)},
+        {"uncovered_vertices", mapping.coverage.uncovered_vertices}}},
       {"anchors", layout.n_anchors},
       {"layout_edges", layout.edges.size()},
       {"patches", layout.patches.size()},
@@ -139,6 +154,7 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
         {"limit", mapping.settings.max_maps},
         {"limit_reached", mapping.map_limit_reached}}},
       {"tip_anchors", helpers_json(mapping.tip_anchors, source, target)},
+      {"extremity_anchors", extremity_anchors_json(mapping.extremity_anchors)},
       {"released_anchors", released_json(mapping.released_anchors)},
       {"relaxation",
        {{"enabled", mapping.settings.cross_map.relax},

@@ -88,8 +88,6 @@ TrianglePoint closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::V
 ClosestPointIndex::ClosestPointIndex(const Mesh& mesh) {
   XP_ASSERT_MSG(mesh.n_faces() > 0, "closest-point index over a mesh without faces");
   triangles_.reserve(mesh.n_faces());
-  std::vector<Eigen::Vector3d> centroids;
-  centroids.reserve(mesh.n_faces());
   for (FaceHandle f : mesh.faces()) {
     std::array<Eigen::Vector3d, 3> corners;
     int k = 0;
@@ -98,8 +96,22 @@ ClosestPointIndex::ClosestPointIndex(const Mesh& mesh) {
       corners[k++] = position(mesh, v);
     }
     triangles_.push_back(corners);
-    centroids.push_back((corners[0] + corners[1] + corners[2]) / 3.0);
   }
+  build_tree();
+}
+
+ClosestPointIndex::ClosestPointIndex(const std::vector<Eigen::Vector3d>& points,
+                                     const std::vector<std::array<int, 3>>& faces) {
+  XP_ASSERT_MSG(!faces.empty(), "closest-point index over no triangles");
+  triangles_.reserve(faces.size());
+  for (const std::array<int, 3>& face : faces) triangles_.push_back({points[face[0]], points[face[1]], points[face[2]]});
+  build_tree();
+}
+
+void ClosestPointIndex::build_tree() {
+  std::vector<Eigen::Vector3d> centroids;
+  centroids.reserve(triangles_.size());
+  for (const auto& corners : triangles_) centroids.push_back((corners[0] + corners[1] + corners[2]) / 3.0);
   faces_.resize(triangles_.size());
   for (int f = 0; f < n_faces(); ++f) faces_[f] = f;
   nodes_.reserve(2 * triangles_.size() / kLeafSize + 1);

@@ -42,6 +42,10 @@ class ClosestPointIndex {
   /// Build the tree over every face of `mesh` (O(F log F)). \pre a triangle mesh, >= 1 face
   explicit ClosestPointIndex(const Mesh& mesh);
 
+  /// The same over the triangles `faces` (corner indices into `points`), e.g. a remesh's
+  /// chords; face i of the answers is faces[i]. \pre >= 1 face, every index valid
+  ClosestPointIndex(const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int, 3>>& faces);
+
   /// The surface point nearest to `p`. \pre p finite
   ClosestPoint closest(const Eigen::Vector3d& p) const;
 
@@ -59,6 +63,7 @@ class ClosestPointIndex {
   };
 
   int build(int begin, int end, const std::vector<Eigen::Vector3d>& centroids);
+  void build_tree();  // over triangles_
 
   std::vector<std::array<Eigen::Vector3d, 3>> triangles_;  ///< corners per face, fv_range order
   std::vector<int> faces_;                                 ///< face indices, grouped by leaf

@@ -6,6 +6,9 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <vector>
+
 namespace xparam {
 
 /// Double-precision points; status attributes so deletion and garbage collection work;
@@ -52,6 +55,20 @@ inline double surface_area(const Mesh& mesh) {
   double area = 0.0;
   for (FaceHandle f : mesh.faces()) area += mesh.calc_face_area(f);
   return area;
+}
+
+/// The faces as vertex-index triples (fv order), in face order: a remesh's faces, or the input
+/// of a triangle-soup structure. \pre a triangle mesh
+inline std::vector<std::array<int, 3>> triangles_of(const Mesh& mesh) {
+  std::vector<std::array<int, 3>> triangles;
+  triangles.reserve(mesh.n_faces());
+  for (FaceHandle f : mesh.faces()) {
+    std::array<int, 3> corners{};
+    int k = 0;
+    for (VertexHandle v : mesh.fv_range(f)) corners[k++] = v.idx();
+    triangles.push_back(corners);
+  }
+  return triangles;
 }
 
 }  // namespace xparam

@@ -1,9 +1,11 @@
 #include "map/map_optimization.h"
 
+#include "core/closest_point.h"
 #include "core/errors.h"
 #include "core/stopwatch.h"
 #include "core/surface_walk.h"
 #include "map/foldover_free_energy.h"
+#include "map/remesh_coverage.h"
 #include "map/remesh_quality.h"
 
 #include <Eigen/Eigenvalues>
@@ -79,6 +81,14 @@ struct Incidence {
   int corner = 0;
 };
 
+// An uncovered target vertex pulling the remesh point nearest to it (on one remesh face, at
+// fixed barycentrics until the next refresh) towards itself.
+struct CoveragePull {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // the target vertex
+  Eigen::Vector3d bary = Eigen::Vector3d::Zero();   // on the remesh face, faces_ corner order
+  double weight = 0.0;                              // coverage_weight times its share of the target's area
+};
+
 // A folded face's energy while the barrier holds (per unit weight): finite, so a folded face
 // neither freezes its vertices nor hides the rest of its ring's energy, and far above any
 // unfolded face's, so opening it pays and folding one never does.
@@ -88,6 +98,9 @@ constexpr double kFoldedFaceEnergy = 1e6;
 // not become fewer.
 constexpr int kUntangleSweeps = 60;
 constexpr int kUntanglePatience = 15;
+
+// The barrier phase goes on while a sweep lowers the coverage energy by this fraction of it.
+constexpr double kCoverageTolerance = 0.01;
 
 class MapOptimizer {
  public:
@@ -112,6 +125,7 @@ class MapOptimizer {
     pinned_ = pinned;
     colour_free_vertices();
     moved_.assign(n_vertices, 1);
+    measure_target_areas();
   }
 
   MapOptimizationResult run() {
@@ -126,18 +140,42 @@ class MapOptimizer {
       sweeps_left -= used;
       result.sweeps += used;
     }
-    // Lowering the energy, the barrier keeping every unfolded face unfolded.
+    // Lowering the energy, the barrier keeping every unfolded face unfolded. The energy is
+    // measured again after each refresh of the coverage pulls: the recorded energy never rises
+    // between refreshes.
     eps_ = 0.0;
+    refresh_coverage();
     double energy = total_energy();
     result.energy.push_back(energy);
     std::fill(moved_.begin(), moved_.end(), 1);
-    for (; sweeps_left > 0; --sweeps_left) {
+    double coverage = total_coverage_energy();
+    for (int since_refresh = 0; sweeps_left > 0; --sweeps_left) {
       const bool any_moved = sweep();
       ++result.sweeps;
       const double was = energy;
+      const double coverage_was = coverage;
       energy = total_energy();
+      coverage = total_coverage_energy();
       result.energy.push_back(energy);
-      if (!any_moved || was - energy <= settings_.tolerance * was) break;
+      // Converged when the sweep barely lowered the energy and, while the remesh leaves target
+      // vertices out, their pull too (small against the distortion, but what opens a finger).
+      const bool converged = !any_moved || (was - energy <= settings_.tolerance * was &&
+                                            coverage_was - coverage <= kCoverageTolerance * coverage_was);
+      // The pulls are found again every coverage_refresh sweeps, and before stopping: the run
+      // ends only at a sweep right after a refresh that lowered nothing.
+      ++since_refresh;
+      if (settings_.coverage_weight > 0.0 &&
+          (since_refresh >= settings_.coverage_refresh || (converged && since_refresh > 1))) {
+        since_refresh = 0;
+        refresh_coverage();
+        std::fill(moved_.begin(), moved_.end(), 1);
+        energy = total_energy();
+        coverage = total_coverage_energy();
+        result.refreshed.push_back(static_cast<int>(result.energy.size()));
+        result.energy.push_back(energy);
+        continue;
+      }
+      if (converged) break;
     }
     result.flipped_after = count_folded();
     result.distortion_after = mean_unfolded_energy();
@@ -308,7 +346,75 @@ class MapOptimizer {
     } else {
       value.energy = weight_[f] * (value.folded ? kFoldedFaceEnergy : foldover_free_energy(j, settings_.area_weight, 0.0));
     }
+    value.energy += coverage_energy(f, moved, at);
     return value;
+  }
+
+  double total_coverage_energy() const {
+    double sum = 0.0;
+    for (int f = 0; f < static_cast<int>(pulls_.size()); ++f) sum += coverage_energy(f, -1, {});
+    return sum;
+  }
+
+  // The coverage pulls on face f, with `moved` (if >= 0) at `at`.
+  double coverage_energy(int f, int moved, const Eigen::Vector3d& at) const {
+    if (pulls_.empty() || pulls_[f].empty()) return 0.0;
+    const auto& t = faces_[f];
+    const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
+    double energy = 0.0;
+    for (const CoveragePull& pull : pulls_[f]) {
+      const Eigen::Vector3d nearest = pull.bary[0] * point(t[0]) + pull.bary[1] * point(t[1]) + pull.bary[2] * point(t[2]);
+      const double excess = std::max((pull.point - nearest).norm() - coverage_margin_, 0.0) / coverage_margin_;
+      energy += pull.weight * excess * excess;
+    }
+    return energy;
+  }
+
+  // d(coverage energy of face f)/d(position of its corner `corner`), `moved` at `at`.
+  Eigen::Vector3d coverage_gradient(int f, int corner, int moved, const Eigen::Vector3d& at) const {
+    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+    if (pulls_.empty() || pulls_[f].empty()) return gradient;
+    const auto& t = faces_[f];
+    const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
+    for (const CoveragePull& pull : pulls_[f]) {
+      const Eigen::Vector3d nearest = pull.bary[0] * point(t[0]) + pull.bary[1] * point(t[1]) + pull.bary[2] * point(t[2]);
+      const Eigen::Vector3d away = pull.point - nearest;
+      const double gap = away.norm();
+      if (!(gap > coverage_margin_)) continue;
+      const double excess = (gap - coverage_margin_) / coverage_margin_;
+      gradient -= pull.weight * 2.0 * excess / coverage_margin_ * pull.bary[corner] * away / gap;
+    }
+    return gradient;
+  }
+
+  // Each target vertex's share of the target's area, and the coverage margin.
+  void measure_target_areas() {
+    target_vertex_share_.assign(target_.n_vertices(), 0.0);
+    const double area = reference_.target_area();
+    for (FaceHandle f : target_.faces()) {
+      const double share = target_.calc_face_area(f) / (3.0 * area);
+      for (VertexHandle v : target_.fv_range(f)) target_vertex_share_[v.idx()] += share;
+    }
+    coverage_margin_ = 0.5 * kUncoveredGap * std::sqrt(area);
+  }
+
+  // Finds, for every target vertex farther than the margin from the remesh, the remesh point
+  // nearest to it.
+  void refresh_coverage() {
+    pulls_.clear();
+    if (!(settings_.coverage_weight > 0.0)) return;
+    pulls_.resize(faces_.size());
+    const ClosestPointIndex remesh(positions_, faces_);
+    const int n_target = static_cast<int>(target_.n_vertices());
+    std::vector<ClosestPoint> nearest(n_target);
+    tbb::parallel_for(0, n_target, [&](int v) {
+      nearest[v] = remesh.closest(position(target_, target_.vertex_handle(v)));
+    });
+    for (int v = 0; v < n_target; ++v) {
+      if (!(nearest[v].distance > coverage_margin_)) continue;
+      pulls_[nearest[v].location.face].push_back({position(target_, target_.vertex_handle(v)), nearest[v].location.bary,
+                                                   settings_.coverage_weight * target_vertex_share_[v]});
+    }
   }
 
   double total_energy() const {
@@ -390,6 +496,7 @@ class MapOptimizer {
     Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
     for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
       const Incidence& in = incidences_[v][k];
+      gradient += coverage_gradient(in.face, in.corner, v, at);
       PlaneFrame frame;
       const Eigen::Matrix2d j = jacobian(in.face, references[k], v, at, frame);
       if (!frame.valid || (eps_ == 0.0 && !(j.determinant() > 0.0))) continue;
@@ -507,6 +614,9 @@ class MapOptimizer {
   std::vector<std::vector<int>> colours_;
   std::vector<char> moved_;  // per vertex: whether it moved in the last sweep
   double eps_ = 0.0;
+  std::vector<double> target_vertex_share_;        // per target vertex: its share of the target's area
+  double coverage_margin_ = 0.0;                   // gap (target units) a target vertex may have for free
+  std::vector<std::vector<CoveragePull>> pulls_;   // per template face; empty when coverage is off
 };
 
 }  // namespace

@@ -44,6 +44,13 @@ struct MapOptimizationSettings {
   int max_sweeps = 200;      ///< sweeps over every free vertex, at most
   double tolerance = 1e-4;   ///< stop when a sweep lowers the mean energy by less than this fraction of it
   double area_weight = 1.0;  ///< lambda: the area term's weight against the conformal term
+  /// Weight of the coverage term against the distortion (0: none). Each target vertex farther
+  /// than half of kUncoveredGap sqrt(target area) from the remesh (map/remesh_coverage.h) pulls
+  /// the nearest point of the remesh towards it, with energy (area share) ((gap - margin) /
+  /// margin)^2: the distortion of chord triangles cannot see a target finger the remesh cuts
+  /// off, this can.
+  double coverage_weight = 10.0;
+  int coverage_refresh = 10;  ///< sweeps between finding each uncovered target vertex's nearest remesh point again
 };
 
 /// A template vertex whose image is tied to a target landmark.
@@ -58,9 +65,10 @@ struct MapOptimizationResult {
   std::vector<SurfacePoint> locations;     ///< #template V: each vertex's image on the target
   std::vector<Eigen::Vector3d> positions;  ///< the same in 3-D
   /// The energy the barrier phase lowers (a sum over faces of area share times E_f, a folded
-  /// face counting kFoldedFaceEnergy = 1e6), at its start and after each of its sweeps: never
-  /// rising.
+  /// face counting kFoldedFaceEnergy = 1e6, plus the coverage term), at its start, after each of
+  /// its sweeps, and again after each refresh of the coverage pulls: never rising but at those.
   std::vector<double> energy;
+  std::vector<int> refreshed;  ///< indices into `energy` measured right after a refresh of the coverage pulls
   double distortion_before = 0.0;  ///< mean E_f (eps = 0) per template area over the faces that do not fold, at the start
   double distortion_after = 0.0;   ///< and at the end (4 for an isometry up to scale)
   /// Remesh faces folded, collapsed or edge-on at the start, against the remesh's reference

@@ -50,19 +50,6 @@ std::vector<int> input_face_patches(const Mesh& refined, int n_input_faces) {
   return patch;
 }
 
-// Vertex indices of every face in fv order, which is the file order of a loaded input mesh.
-std::vector<std::array<int, 3>> triangles_of(const Mesh& mesh) {
-  std::vector<std::array<int, 3>> triangles;
-  triangles.reserve(mesh.n_faces());
-  for (FaceHandle f : mesh.faces()) {
-    std::array<int, 3> corners{};
-    int k = 0;
-    for (VertexHandle v : mesh.fv_range(f)) corners[k++] = v.idx();
-    triangles.push_back(corners);
-  }
-  return triangles;
-}
-
 // Gamma (or Gamma . phi with untangling) at every template input vertex.
 struct ComposedImages {
   UntangleResult untangled;  // images and phi; only `images` is set when untangling is off
@@ -144,9 +131,11 @@ struct MapAttempt {
 // The template vertices an anchor holds: a vertex anchor's vertex, within `slack` of the
 // target's landmark; every corner of the face an anchor inside a face lies in, held where it is.
 std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& anchors, const Mesh& source,
-                                          const Mesh& target, double slack) {
+                                          const Mesh& target, const PairSettings& settings) {
   std::vector<PinnedVertex> pinned;
   for (std::size_t k = 0; k < anchors[0].anchors.size(); ++k) {
+    const auto named = settings.anchor_slack_by_name.find(anchors[0].anchors[k].name);
+    const double slack = named == settings.anchor_slack_by_name.end() ? settings.anchor_slack : named->second;
     const SurfacePoint& on_template = anchors[0].anchors[k].input_point;
     const Eigen::Vector3d landmark = position(target, anchors[1].anchors[k].input_point);
     const int corners_used = static_cast<int>((on_template.bary.array() > 0.0).count());
@@ -219,7 +208,7 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
   if (settings.optimize_map) {
     stage("optimize map");
     attempt.optimized = optimize_map(source, faces, target, attempt.locations(),
-                                     pinned_vertices(anchors, source, target, settings.anchor_slack),
+                                     pinned_vertices(anchors, source, target, settings),
                                      settings.map_optimization);
     attempt.optimized_folds = static_cast<int>(
         measure_remesh_quality(faces, attempt.optimized->positions, attempt.optimized->locations, target)
@@ -398,6 +387,7 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
     result.anchor_miss.push_back(miss_distance(anchor.name, result.anchors, source, target, result.remesh_vertices));
   result.distortion = measure_distortion(source_positions, image_positions, faces);
   result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
+  result.coverage = measure_remesh_coverage(target, image_positions, faces);
   result.folds_by_anchor = folds_by_anchor(layout.sides[0].mesh, layout.sides[0].anchor_vertices, names,
                                            faces, result.quality.flipped_faces);
   result.mismatched_corners = mismatched_corners(layout, names);
@@ -494,6 +484,96 @@ std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const 
   return best;
 }
 
+// The input vertex nearest to a placed anchor.
+int input_vertex(const Mesh& mesh, const PlacedAnchor& anchor) {
+  const SurfacePoint& at = anchor.input_point;
+  int corner = 0;
+  for (int c = 1; c < 3; ++c) {
+    if (at.bary[c] > at.bary[corner]) corner = c;
+  }
+  int k = 0;
+  for (VertexHandle v : mesh.fv_range(mesh.face_handle(at.face))) {
+    if (k++ == corner) return v.idx();
+  }
+  return -1;
+}
+
+// Tips of `mesh`'s unanchored protrusions (map/extremity_anchors.h), rooted at `anchors[root]`.
+std::vector<int> tips_of(const Mesh& mesh, const PlacedAnchors& anchors, int root, double reach) {
+  std::vector<int> vertices;
+  for (const PlacedAnchor& anchor : anchors.anchors) vertices.push_back(input_vertex(mesh, anchor));
+  return protrusion_tips(mesh, vertices[root], vertices, reach * std::sqrt(surface_area(mesh)));
+}
+
+// How far optimizing the map may move a helper anchor at a protrusion tip from the tip, as a
+// fraction of the tip reach.
+constexpr double kTipSlack = 0.5;
+
+// Whether a map through helper anchors at protrusion tips replaces `current`: less stretched,
+// folding no more by either count, collapsing no more faces, covering the target's area to 2%
+// or no worse.
+bool better_with_tips(const PairMapping& other, const PairMapping& current) {
+  constexpr double kAreaTolerance = 0.02;
+  return other.distortion.all.e_l2 < current.distortion.all.e_l2 &&
+         other.quality.flipped_faces.size() <= current.quality.flipped_faces.size() &&
+         other.quality.strictly_folded_faces <= current.quality.strictly_folded_faces &&
+         other.distortion.degenerate_faces <= current.distortion.degenerate_faces &&
+         area_error(other) <= std::max(kAreaTolerance, area_error(current));
+}
+
+// A map through `current`'s anchors plus helper anchors at the tips of unanchored protrusions
+// matched through it (PairSettings::extremity_anchors), when it is better; nothing otherwise.
+std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const AnchoredMap& current,
+                                                  PairSeconds& seconds) {
+  const PlacedAnchors& on_source = current.map.anchors[0];
+  const PlacedAnchors& on_target = current.map.anchors[1];
+  if (on_source.anchors.size() != on_target.anchors.size() || on_source.anchors.empty()) return std::nullopt;
+  // The root: the template anchor nearest the anchors' centroid, and its namesake on the target.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const PlacedAnchor& anchor : on_source.anchors) centroid += position(in.source, anchor.input_point);
+  centroid /= static_cast<double>(on_source.anchors.size());
+  int root = 0;
+  for (int k = 1; k < static_cast<int>(on_source.anchors.size()); ++k) {
+    if ((position(in.source, on_source.anchors[k].input_point) - centroid).norm() <
+        (position(in.source, on_source.anchors[root].input_point) - centroid).norm())
+      root = k;
+  }
+  PlacedAnchors target_in_source_order;
+  for (const PlacedAnchor& anchor : on_source.anchors) {
+    const auto same = std::find_if(on_target.anchors.begin(), on_target.anchors.end(),
+                                   [&](const PlacedAnchor& other) { return other.name == anchor.name; });
+    if (same == on_target.anchors.end()) return std::nullopt;
+    target_in_source_order.anchors.push_back(*same);
+  }
+  const std::vector<int> source_tips = tips_of(in.source, on_source, root, in.settings.tip_reach);
+  const std::vector<int> target_tips = tips_of(in.target, target_in_source_order, root, in.settings.tip_reach);
+  std::vector<Eigen::Vector3d> images(current.map.remesh_vertices.rows());
+  for (int v = 0; v < static_cast<int>(images.size()); ++v) images[v] = current.map.remesh_vertices.row(v).transpose();
+  const std::vector<std::array<int, 3>> faces = triangles_of(in.source);
+  std::vector<ExtremityAnchor> tips =
+      match_extremities(in.source, source_tips, in.target, target_tips, {images, faces},
+                        anchor_names(on_source), in.settings.max_tip_mismatch);
+  if (tips.empty() || !in.budget.allows_another()) return std::nullopt;
+  AnchoredMap tipped{{}, current.source_anchors, current.target_anchors};
+  for (const ExtremityAnchor& tip : tips) {
+    tipped.source_anchors.anchors.push_back(tip.specs[0]);
+    tipped.target_anchors.anchors.push_back(tip.specs[1]);
+  }
+  if (in.on_stage) in.on_stage("mapping again with " + std::to_string(tips.size()) + " anchors at protrusion tips");
+  PairSettings settings = in.settings;
+  const double slack = kTipSlack * in.settings.tip_reach * std::sqrt(surface_area(in.target));
+  for (const ExtremityAnchor& tip : tips) settings.anchor_slack_by_name[tip.specs[0].name] = slack;
+  std::optional<PairMapping> trial = map_if_possible(in.source, tipped.source_anchors, in.target,
+                                                     tipped.target_anchors, in.curves, settings, in.budget,
+                                                     in.on_stage);
+  if (!trial) return std::nullopt;
+  seconds.add_stages(trial->seconds);
+  if (!better_with_tips(*trial, current.map)) return std::nullopt;
+  tipped.map = std::move(*trial);
+  tipped.map.extremity_anchors = std::move(tips);
+  return tipped;
+}
+
 // A map through `start`'s anchors less some released one at a time, when `start` folds
 // (PairSettings::max_released_anchors; see map_pair), their miss distances not yet measured.
 // Nothing when no release folds less.
@@ -551,7 +631,10 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
                      const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
                      const PairSettings& settings, const StageCallback& on_stage) {
   Stopwatch total;
-  MapBudget budget{settings.max_maps};
+  // One map is kept back for the helper anchors at protrusion tips, tried last on the map the
+  // retries below leave (which it must beat).
+  const int kept_back = settings.extremity_anchors && settings.max_maps > 1 ? 1 : 0;
+  MapBudget budget{settings.max_maps - kept_back};
   const PairInputs in{source, target, curves, settings, on_stage, budget};
   AnchoredMap plain{
       map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, budget, on_stage),
@@ -571,6 +654,14 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
         released = std::move(helped);
     }
     if (released && folds_less(released->map, so_far)) best = std::move(released);
+  }
+  if (settings.extremity_anchors) {
+    budget.left += kept_back;
+    if (std::optional<AnchoredMap> tipped = with_extremity_anchors(in, best ? *best : plain, seconds)) {
+      tipped->map.tip_anchors = (best ? best->map : plain.map).tip_anchors;
+      tipped->map.released_anchors = (best ? best->map : plain.map).released_anchors;
+      best = std::move(tipped);
+    }
   }
   PairMapping result = best ? std::move(best->map) : std::move(plain.map);
   for (ReleasedAnchor& anchor : result.released_anchors)

@@ -16,6 +16,8 @@
 #include "map/cross_map.h"
 #include "map/fold_report.h"
 #include "map/map_optimization.h"
+#include "map/extremity_anchors.h"
+#include "map/remesh_coverage.h"
 #include "map/remesh_quality.h"
 #include "map/remesh_untangling.h"
 #include "map/tip_anchors.h"
@@ -24,6 +26,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <map>
 #include <functional>
 #include <string>
 #include <vector>
@@ -46,6 +49,16 @@ struct PairSettings {
   /// (map/corner_report.h), map again with a helper anchor behind each of them
   /// (map/tip_anchors.h) and keep that map when it folds less (map_pair).
   bool tip_anchors = true;
+  /// Map again through helper anchors at the tips of unanchored protrusions (fingers without
+  /// landmarks) matched through the first map (map/extremity_anchors.h), and keep that map when
+  /// it is less stretched without folding more (map_pair).
+  bool extremity_anchors = true;
+  /// A protrusion tip ends a protrusion at least half this long and is the farthest point within
+  /// this distance; fraction of sqrt(area) of each mesh (3.4 cm on an adult body).
+  double tip_reach = 0.025;
+  /// Tips are matched when the first map puts each within this of the other (summed over both
+  /// meshes, fractions of sqrt(area)).
+  double max_tip_mismatch = 0.15;
   /// The helpers' reaches tried in turn (fractions of the tip's shortest curve), until a map has
   /// no fold. Which reach suits a tip is not known beforehand: on cat/horse 0.1 and 0.3 leave
   /// no fold, 0.2 as many as without helpers, 0.25 one.
@@ -70,6 +83,9 @@ struct PairSettings {
   /// image from its landmark; 0 keeps every anchor exact. An anchor inside a template face (not
   /// at a vertex) stays exact.
   double anchor_slack = 0.0;
+  /// Slack of particular anchors by name, in place of anchor_slack (target units): the helper
+  /// anchors at protrusion tips are set here, loose since a tip is a region more than a point.
+  std::map<std::string, double> anchor_slack_by_name;
 };
 
 /// Wall-clock seconds of each stage of map_pair (not deterministic, never compared).
@@ -140,6 +156,7 @@ struct PairMapping {
   std::vector<int> face_patch;       ///< #template input faces: layout patch holding most of the face's area
   DistortionResult distortion;       ///< per face and global L2-stretch and angle distortion (eq. 3, 5, 6)
   RemeshQualityResult quality;       ///< flipped faces and area ratio of the remesh on the target
+  RemeshCoverage coverage;           ///< how far target vertices lie from the remesh (a missing finger)
   /// The flipped faces by nearest template anchor (map/fold_report.h).
   std::vector<AnchorFolds> folds_by_anchor;
   /// Anchors whose layout corners take very different shares of the turn about them on the two
@@ -160,6 +177,9 @@ struct PairMapping {
   /// whose corners disagreed (PairSettings::tip_anchors); empty unless they made it fold less.
   /// They are among `anchors`.
   std::vector<TipAnchor> tip_anchors;
+  /// The helper anchors at protrusion tips the map passes through (PairSettings::extremity_anchors);
+  /// empty unless they made it better. They are among `anchors`.
+  std::vector<ExtremityAnchor> extremity_anchors;
   /// The anchors the map no longer passes through, in the order they were released; empty
   /// unless PairSettings::max_released_anchors > 0 and the map with every anchor folds.
   std::vector<ReleasedAnchor> released_anchors;

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -57,17 +58,6 @@ SurfacePoint at_vertex(const Mesh& mesh, int v) {
   int corner = 0;
   for (VertexHandle u : mesh.fv_range(face)) point.bary[corner++] = u.idx() == v ? 1.0 : 0.0;
   return point;
-}
-
-std::vector<std::array<int, 3>> triangles_of(const Mesh& mesh) {
-  std::vector<std::array<int, 3>> triangles;
-  for (FaceHandle f : mesh.faces()) {
-    std::array<int, 3> t{};
-    int k = 0;
-    for (VertexHandle v : mesh.fv_range(f)) t[k++] = v.idx();
-    triangles.push_back(t);
-  }
-  return triangles;
 }
 
 // Faces folded by the remesh's own count, collapsed, or folded by the strict count.
@@ -140,7 +130,14 @@ TEST(MapOptimization, RecoversASimilarityFromAPerturbedStartWithoutEverFolding) 
   EXPECT_EQ(result.flipped_after, 0);
   EXPECT_EQ(folded(pair.faces, result.locations, pair.target), 0);
   ASSERT_GE(result.energy.size(), 2u);
-  for (std::size_t k = 1; k < result.energy.size(); ++k) EXPECT_LE(result.energy[k], result.energy[k - 1]);
+  // A refresh of the coverage pulls may raise it (a target vertex newly left out pulls).
+  for (std::size_t k = 1; k < result.energy.size(); ++k) {
+    const bool refreshed =
+        std::find(result.refreshed.begin(), result.refreshed.end(), static_cast<int>(k)) != result.refreshed.end();
+    if (!refreshed) {
+      EXPECT_LE(result.energy[k], result.energy[k - 1]) << k;
+    }
+  }
   // An isometry up to scale has energy 4 (per template area).
   EXPECT_NEAR(result.energy.back(), 4.0, 1e-3);
   for (const PinnedVertex& pin : pair.pinned) {

@@ -130,6 +130,7 @@ TEST(PairMapping, UntanglingLeavesNoFlippedFaceOnTheSampleTargets) {
     paper.retry_keeping_corners = false;  // one layout: a second one would hide what untangling left
     paper.tip_anchors = false;            // and so would mapping again with helper anchors
     paper.optimize_map = false;           // and optimizing the map, which unfolds too
+    paper.extremity_anchors = false;      // and mapping again through protrusion tips
     PairSettings off = paper;
     off.untangle = false;
     const PairMapping tangled = map_pair(man.mesh.mesh, anchors, target.mesh, anchors, {}, off);

@@ -95,16 +95,7 @@ struct SwirlCase {
     return images;
   }
 
-  std::vector<std::array<int, 3>> faces() const {
-    std::vector<std::array<int, 3>> list;
-    for (FaceHandle f : source.faces()) {
-      std::array<int, 3> t{};
-      int c = 0;
-      for (VertexHandle v : source.fv_range(f)) t[c++] = v.idx();
-      list.push_back(t);
-    }
-    return list;
-  }
+  std::vector<std::array<int, 3>> faces() const { return triangles_of(source); }
 };
 
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
