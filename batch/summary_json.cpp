@@ -55,6 +55,8 @@ nlohmann::ordered_json summary_json(const BatchSummary& summary) {
   json["succeeded"] = summary.succeeded;
   json["failed"] = summary.failed;
   json["archive_targets"] = summary.archive_targets;
+  json["interrupted"] = summary.interrupted;
+  json["not_run"] = summary.not_run;
   json["seconds"] = summary.seconds;
   json["targets_per_second"] = summary.targets_per_second();
   nlohmann::ordered_json targets = nlohmann::ordered_json::array();
