@@ -92,18 +92,10 @@ class Committer {
   void commit(const TargetRecord& record, TargetOutcome& slot) {
     const std::lock_guard lock(mutex_);
     if (broken_) return;  // an earlier commit failed: its exception ends the run
-    try {
-      archive_.commit(record);
-    } catch (const std::exception& e) {
-      broken_ = true;
-      throw ArchiveError(std::string(e.what()) + "\ntarget \"" + record.name +
-                         "\" was not committed; the targets committed before it stay in " +
-                         parts_directory(archive_.path()).string() +
-                         ": once the cause is fixed (space freed), run the same command with --resume");
-    }
+    guarded([&] { archive_.commit(record); }, "target \"" + record.name + "\" was not committed");
     slot = outcome_of(record);
     if (seconds_since(last_checkpoint_) >= settings_.checkpoint_seconds) {
-      archive_.assemble();
+      guarded([&] { archive_.assemble(); }, "the archive could not be re-assembled (checkpoint)");
       last_checkpoint_ = Clock::now();
     }
     ++state_.done;
@@ -114,6 +106,20 @@ class Committer {
   }
 
  private:
+  // Run a write; when it fails (a full disk, an I/O error) no further target starts, and the
+  // error says what was lost and what stays.
+  template <typename Write>
+  void guarded(const Write& write, const std::string& lost) {
+    try {
+      write();
+    } catch (const std::exception& e) {
+      broken_ = true;
+      throw ArchiveError(std::string(e.what()) + "\n" + lost + "; the targets committed before stay in " +
+                         parts_directory(archive_.path()).string() +
+                         ": once the cause is fixed (space freed), run the same command with --resume");
+    }
+  }
+
   BatchArchive& archive_;
   const BatchSettings& settings_;
   const BatchProgressCallback& progress_;
