@@ -40,8 +40,9 @@ std::vector<std::filesystem::path> existing_archive_files(const std::filesystem:
 /// The part file of target `name` (the name percent-encoded so any name is a safe file name).
 std::filesystem::path target_part_path(const std::filesystem::path& archive, const std::string& name);
 
-/// An archive being filled by a batch run. One process writes an archive at a time;
-/// within it, commit() may be called from several threads at once.
+/// An archive being filled by a batch run. One process writes an archive at a time (the
+/// caller holds its io/archive_lock.h lock); within it, commit() may be called from several
+/// threads at once.
 class BatchArchive {
  public:
   /// Start a new archive at `archive` (an existing archive and its parts are replaced: callers
