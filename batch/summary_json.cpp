@@ -49,7 +49,7 @@ nlohmann::ordered_json summary_json(const BatchSummary& summary) {
   json["shard"] = {{"index", summary.shard.index}, {"count", summary.shard.count}};
   json["threads"] = summary.threads;
   json["discovered"] = summary.discovered;
-  json["targets_in_shard"] = summary.targets.size();
+  json["targets_in_shard"] = summary.targets.size() + summary.not_run;
   json["ran"] = summary.ran;
   json["kept"] = summary.kept;
   json["succeeded"] = summary.succeeded;

@@ -197,6 +197,8 @@ TEST(ArchiveSafety, InterruptExitsOneThirtyCommitsWhatRanAndResumeCompletesIt) {
   const int ran = summary["ran"].get<int>();
   EXPECT_GE(ran, 1);
   EXPECT_EQ(ran + summary["not_run"].get<int>(), 12);
+  EXPECT_EQ(summary["targets_in_shard"], 12);
+  EXPECT_EQ(summary["targets"].size(), static_cast<std::size_t>(ran));
   EXPECT_EQ(test::run_status(quoted(test::xparam_binary()) + " inspect " + quoted(archive) + " > " +
                              quoted(dir / "inspect.txt")),
             0);
