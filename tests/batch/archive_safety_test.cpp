@@ -116,7 +116,7 @@ TEST(ArchiveSafety, ExistingArchiveIsKeptUnlessResumeOrForceAndOutputsAreChecked
 
 TEST(ArchiveSafety, SecondWriterIsRefusedNamingTheFirstWhichFinishesUnharmed) {
   const path dir = test::fresh_temp_dir("safety_two_writers");
-  const path targets = spot_targets(dir, 8);
+  const path targets = spot_targets(dir, 5);
   const path reference = uninterrupted(dir, targets);
   const path archive = dir / "out.h5";
   const pid_t first = spawn_spot_batch(targets, archive, dir / "first.log");
@@ -178,7 +178,7 @@ TEST(ArchiveSafety, FullDiskExitsThreeKeepsWhatWasCommittedAndResumeCompletesIt)
 
 TEST(ArchiveSafety, InterruptExitsOneThirtyCommitsWhatRanAndResumeCompletesIt) {
   const path dir = test::fresh_temp_dir("safety_interrupt");
-  const path targets = spot_targets(dir, 12);
+  const path targets = spot_targets(dir, 6);
   const path reference = uninterrupted(dir, targets);
   const path archive = dir / "out.h5";
   const pid_t child = spawn_spot_batch(targets, archive, dir / "interrupted.log", {"--summary", (dir / "s.json").string()});
@@ -196,8 +196,8 @@ TEST(ArchiveSafety, InterruptExitsOneThirtyCommitsWhatRanAndResumeCompletesIt) {
   EXPECT_TRUE(summary["interrupted"].get<bool>());
   const int ran = summary["ran"].get<int>();
   EXPECT_GE(ran, 1);
-  EXPECT_EQ(ran + summary["not_run"].get<int>(), 12);
-  EXPECT_EQ(summary["targets_in_shard"], 12);
+  EXPECT_EQ(ran + summary["not_run"].get<int>(), 6);
+  EXPECT_EQ(summary["targets_in_shard"], 6);
   EXPECT_EQ(summary["targets"].size(), static_cast<std::size_t>(ran));
   EXPECT_EQ(test::run_status(quoted(test::xparam_binary()) + " inspect " + quoted(archive) + " > " +
                              quoted(dir / "inspect.txt")),
