@@ -10,6 +10,8 @@
 #include <tbb/task_arena.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <mutex>
 
@@ -76,12 +78,24 @@ class Committer {
     state_.total = total;
   }
 
+  // Whether no further target may start: a stop was asked for, or a commit failed (the disk is
+  // full or failing: the run is over, and what is committed stays).
+  bool stopping() const {
+    if (settings_.stop != nullptr && settings_.stop->load()) interrupted_ = true;
+    return interrupted_ || broken_;
+  }
+  bool interrupted() const {
+    stopping();
+    return interrupted_.load();
+  }
+
   void commit(const TargetRecord& record, TargetOutcome& slot) {
     const std::lock_guard lock(mutex_);
-    archive_.commit(record);
+    if (broken_) return;  // an earlier commit failed: its exception ends the run
+    guarded([&] { archive_.commit(record); }, "target \"" + record.name + "\" was not committed");
     slot = outcome_of(record);
     if (seconds_since(last_checkpoint_) >= settings_.checkpoint_seconds) {
-      archive_.assemble();
+      guarded([&] { archive_.assemble(); }, "the archive could not be re-assembled (checkpoint)");
       last_checkpoint_ = Clock::now();
     }
     ++state_.done;
@@ -92,10 +106,26 @@ class Committer {
   }
 
  private:
+  // Run a write; when it fails (a full disk, an I/O error) no further target starts, and the
+  // error says what was lost and what stays.
+  template <typename Write>
+  void guarded(const Write& write, const std::string& lost) {
+    try {
+      write();
+    } catch (const std::exception& e) {
+      broken_ = true;
+      throw ArchiveError(std::string(e.what()) + "\n" + lost + "; the targets committed before stay in " +
+                         parts_directory(archive_.path()).string() +
+                         ": once the cause is fixed (space freed), run the same command with --resume");
+    }
+  }
+
   BatchArchive& archive_;
   const BatchSettings& settings_;
   const BatchProgressCallback& progress_;
   std::mutex mutex_;
+  mutable std::atomic<bool> interrupted_{false};
+  std::atomic<bool> broken_{false};
   BatchProgress state_;
   Clock::time_point start_ = Clock::now();
   Clock::time_point last_checkpoint_ = Clock::now();
@@ -162,11 +192,18 @@ BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, 
   const std::vector<std::size_t> to_run = runnable(plan);
   Committer committer(archive, settings, to_run.size(), progress);
   run_parallel(settings.threads, to_run.size(), [&](std::size_t k) {
+    if (committer.stopping()) return;
     const std::size_t i = to_run[k];
     const TargetRecord record = run_target(prepared, plan.targets[i].spec, settings.pair);
     committer.commit(record, summary.targets[i]);
   });
-  summary.ran = to_run.size();
+  summary.interrupted = committer.interrupted();
+  // Targets a stop left unstarted have no outcome: they are counted, not listed.
+  const auto unstarted = std::remove_if(summary.targets.begin(), summary.targets.end(),
+                                        [](const TargetOutcome& outcome) { return outcome.name.empty(); });
+  summary.not_run = static_cast<std::size_t>(summary.targets.end() - unstarted);
+  summary.targets.erase(unstarted, summary.targets.end());
+  summary.ran = to_run.size() - summary.not_run;
 
   archive.finish(!settings.keep_parts);
   summary.archive_targets = archive.committed().size();

@@ -16,6 +16,7 @@
 #include "io/archive_writer.h"
 #include "map/pair_mapping.h"
 
+#include <atomic>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -39,6 +40,10 @@ struct BatchSettings {
   bool keep_parts = false;
   PairSettings pair;                       ///< the per-target pipeline's options
   ArchiveWriteSettings archive_settings;   ///< compression, XDMF sidecar
+  /// When set and it becomes true (a signal handler sets it), no further target starts: the
+  /// targets in flight finish and are committed, the archive is assembled, and the summary
+  /// says `interrupted`. Not owned.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 /// What became of one target of the plan.
@@ -74,8 +79,12 @@ struct BatchSummary {
   std::size_t succeeded = 0;          ///< of the shard's targets (run or kept), how many are ok
   std::size_t failed = 0;             ///< of the shard's targets (run or kept), how many failed
   std::size_t archive_targets = 0;    ///< rows of the final archive (other shards' kept rows included)
+  bool interrupted = false;           ///< settings.stop was raised during the run
+  std::size_t not_run = 0;            ///< targets of the plan left unstarted by the interruption
   double seconds = 0.0;               ///< wall-clock seconds of the run
-  std::vector<TargetOutcome> targets; ///< the shard's targets, by name
+  /// The shard's targets that ran or were kept, by name (those left unstarted by an
+  /// interruption are not among them: see not_run).
+  std::vector<TargetOutcome> targets;
 
   /// Targets per second over the targets executed (0 when none ran).
   double targets_per_second() const;
@@ -87,10 +96,11 @@ std::string batch_options_json(const PairSettings& settings);
 
 /// Run `plan` against `prepared`: create (or, with settings.resume, continue) the archive,
 /// run every target whose action is Run, commit each as it finishes, checkpoint, and assemble
-/// the final archive.
+/// the final archive. Once settings.stop is raised, no further target starts (see there).
 /// \throw ArchiveError (or std::filesystem::filesystem_error) when the archive cannot be
-///   written or a resumed archive was started with another template or options: fatal, the
-///   committed parts stay for a later --resume. Target failures never throw: they are outcomes.
+///   written (a full disk, an I/O error) or a resumed archive was started with another template
+///   or options: fatal, no further target starts, the targets committed before stay for a later
+///   --resume and the failing one leaves nothing. Target failures never throw: they are outcomes.
 BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchSettings& settings,
                        const BatchProgressCallback& progress = {});
 

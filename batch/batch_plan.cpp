@@ -1,6 +1,8 @@
 #include "batch/batch_plan.h"
 
 #include "io/archive_commit.h"
+#include "io/options_difference.h"
+#include "io/sha256.h"
 
 #include <algorithm>
 #include <set>
@@ -33,21 +35,39 @@ std::map<std::string, ArchiveTargetSummary> committed_targets(const std::filesys
   return committed;
 }
 
+namespace {
+
+// Why the committed result of `spec` cannot be kept; empty when it can.
+std::string stale_reason(const TargetSpec& spec, const ArchiveTargetSummary& recorded, const std::string& options_json) {
+  if (sha256_file_hex_or_empty(spec.mesh) != recorded.mesh_sha256) return "its mesh " + spec.mesh.string() + " changed since it ran";
+  if (sha256_file_hex_or_empty(spec.anchors) != recorded.anchors_sha256)
+    return "its anchors " + spec.anchors.string() + " changed since they were used";
+  if (!options_json.empty() && !recorded.options_json.empty() && recorded.options_json != options_json)
+    return "it ran with other options: " + options_difference(recorded.options_json, options_json);
+  return {};
+}
+
+}  // namespace
+
 BatchPlan plan_batch(const std::vector<TargetSpec>& discovered, const Shard& shard,
-                     const std::map<std::string, ArchiveTargetSummary>& committed, bool retry_failed) {
+                     const std::map<std::string, ArchiveTargetSummary>& committed, bool retry_failed,
+                     const std::string& options_json) {
   BatchPlan plan;
   plan.discovered = discovered.size();
   plan.shard = shard;
   std::set<std::string> planned;
   for (TargetSpec& spec : select_shard(discovered, shard)) {
-    TargetAction action = TargetAction::Run;
+    PlannedTarget target{spec, TargetAction::Run, {}};
     const auto it = committed.find(spec.name);
     if (it != committed.end()) {
-      if (it->second.ok) action = TargetAction::KeepDone;
-      else if (!retry_failed) action = TargetAction::KeepFailed;
+      target.reason = stale_reason(spec, it->second, options_json);
+      if (!target.reason.empty()) target.action = TargetAction::Run;
+      else if (it->second.ok) target.action = TargetAction::KeepDone;
+      else if (!retry_failed) target.action = TargetAction::KeepFailed;
+      else target.reason = "it failed and --retry-failed reruns it";
     }
     planned.insert(spec.name);
-    plan.targets.push_back({std::move(spec), action});
+    plan.targets.push_back(std::move(target));
   }
   for (const auto& [name, summary] : committed)
     if (!planned.count(name)) plan.foreign.push_back(name);

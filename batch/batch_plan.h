@@ -25,6 +25,9 @@ enum class TargetAction {
 struct PlannedTarget {
   TargetSpec spec;
   TargetAction action = TargetAction::Run;
+  /// Why a target the archive holds runs again (its mesh or anchors changed, it ran with other
+  /// options, it failed and is retried); empty otherwise.
+  std::string reason;
 };
 
 /// The plan of one run over one shard.
@@ -47,9 +50,16 @@ struct BatchPlan {
 std::map<std::string, ArchiveTargetSummary> committed_targets(const std::filesystem::path& archive);
 
 /// Plan a run: take shard `shard` of `discovered` (sorted by name), and mark targets found in
-/// `committed` (from committed_targets; empty for a fresh run) as kept, except failed ones when
-/// `retry_failed`.
+/// `committed` (from committed_targets; empty for a fresh run) as kept, except
+///  - failed ones when `retry_failed`;
+///  - those whose mesh or anchor file's SHA-256 now differs from the one recorded (the file
+///    was edited since: its result is stale);
+///  - those recorded with other options than `options_json` (batch_options_json), when it is
+///    not empty and the record has options (a part records its own): kept rows are only ever
+///    rows of this run's options.
+/// The reason of every rerun is in PlannedTarget::reason.
 BatchPlan plan_batch(const std::vector<TargetSpec>& discovered, const Shard& shard,
-                     const std::map<std::string, ArchiveTargetSummary>& committed, bool retry_failed);
+                     const std::map<std::string, ArchiveTargetSummary>& committed, bool retry_failed,
+                     const std::string& options_json = {});
 
 }  // namespace xparam

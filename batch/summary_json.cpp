@@ -49,12 +49,14 @@ nlohmann::ordered_json summary_json(const BatchSummary& summary) {
   json["shard"] = {{"index", summary.shard.index}, {"count", summary.shard.count}};
   json["threads"] = summary.threads;
   json["discovered"] = summary.discovered;
-  json["targets_in_shard"] = summary.targets.size();
+  json["targets_in_shard"] = summary.targets.size() + summary.not_run;
   json["ran"] = summary.ran;
   json["kept"] = summary.kept;
   json["succeeded"] = summary.succeeded;
   json["failed"] = summary.failed;
   json["archive_targets"] = summary.archive_targets;
+  json["interrupted"] = summary.interrupted;
+  json["not_run"] = summary.not_run;
   json["seconds"] = summary.seconds;
   json["targets_per_second"] = summary.targets_per_second();
   nlohmann::ordered_json targets = nlohmann::ordered_json::array();

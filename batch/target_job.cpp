@@ -128,15 +128,6 @@ std::string describe_failure(const TargetSpec& target, const std::string& messag
   return (target.mesh.empty() ? target.name : target.mesh.string()) + ": " + message;
 }
 
-std::string digest_or_empty(const std::filesystem::path& file) {
-  if (file.empty()) return {};
-  try {
-    return sha256_file_hex(file);
-  } catch (const InputError&) {
-    return {};  // unreadable: the load that follows reports why
-  }
-}
-
 void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, const PairSettings& settings,
                 TargetRecord& record) {
   if (!target.problem.empty()) throw InputError(target.problem);
@@ -172,8 +163,8 @@ TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& targ
   record.name = target.name;
   record.mesh_file = target.mesh.string();
   record.anchors_file = target.anchors.string();
-  record.mesh_sha256 = digest_or_empty(target.mesh);
-  record.anchors_sha256 = digest_or_empty(target.anchors);
+  record.mesh_sha256 = sha256_file_hex_or_empty(target.mesh);
+  record.anchors_sha256 = sha256_file_hex_or_empty(target.anchors);
   // A failed record keeps only what identifies it: the archive fills its rows with NaN / -1.
   const auto fail = [&](const std::string& message) {
     TargetRecord failed;

@@ -69,6 +69,6 @@ fi
 
 shard_files=()
 for ((i = 0; i < shards; ++i)); do shard_files+=("$shard_dir/shard_$i.h5"); done
-"$xparam" merge "${shard_files[@]}" --out "$out" || { echo "run_parallel.sh: merge failed" >&2; exit 3; }
+"$xparam" merge "${shard_files[@]}" --force --out "$out" || { echo "run_parallel.sh: merge failed" >&2; exit 3; }
 echo "run_parallel.sh: $shards shards merged into $out" >&2
 exit "$status"

@@ -65,7 +65,7 @@ run_merge() {
     [[ -f $shard_dir/shard_$i.h5 ]] || { echo "slurm_batch.sh: shard $i has no archive ($shard_dir/shard_$i.h5)" >&2; exit 3; }
     files+=("$shard_dir/shard_$i.h5")
   done
-  exec "$xparam" merge "${files[@]}" --out "$XPARAM_OUT"
+  exec "$xparam" merge "${files[@]}" --force --out "$XPARAM_OUT"
 }
 
 submit() {

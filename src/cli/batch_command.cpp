@@ -1,6 +1,7 @@
 // `xparam batch`: one template against a folder (or manifest) of targets, into one archive.
 #include "cli/commands.h"
 #include "cli/map_options.h"
+#include "cli/stop_signals.h"
 
 #include "batch/batch_driver.h"
 #include "batch/batch_plan.h"
@@ -8,6 +9,9 @@
 #include "batch/target_discovery.h"
 #include "batch/template_preparation.h"
 #include "core/errors.h"
+#include "io/archive_commit.h"
+#include "io/archive_lock.h"
+#include "io/output_paths.h"
 
 #include <CLI/CLI.hpp>
 #include <tbb/info.h>
@@ -19,6 +23,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -34,6 +39,7 @@ struct BatchOptions {
   std::string out;
   int threads = tbb::info::default_concurrency();
   bool resume = false;
+  bool force = false;
   bool retry_failed = false;
   std::string shard = "0/1";
   bool dry_run = false;
@@ -70,7 +76,8 @@ void apply_config(CLI::App& batch, const std::string& file) {
 std::string plan_line(const PlannedTarget& target) {
   switch (target.action) {
     case TargetAction::Run:
-      return "run   " + target.spec.name + "  " + target.spec.mesh.string() + "  " + target.spec.anchors.string();
+      return "run   " + target.spec.name + "  " + target.spec.mesh.string() + "  " + target.spec.anchors.string() +
+             (target.reason.empty() ? "" : "  (again: " + target.reason + ")");
     case TargetAction::KeepDone: return "keep  " + target.spec.name + "  (ok in the archive)";
     case TargetAction::KeepFailed:
       return "keep  " + target.spec.name + "  (failed in the archive; --retry-failed reruns it)";
@@ -148,6 +155,34 @@ int run_dry(const PreparedTemplate& prepared, const BatchPlan& plan, const Batch
   return problems > 0 ? kExitSomeFailed : 0;
 }
 
+// Before anything is written: every output can be written, and nothing of an earlier run is
+// replaced unless --resume or --force says what to do with it.
+void check_outputs(const BatchOptions& options) {
+  try {
+    check_archive_outputs(options.out);
+    if (!options.summary.empty()) check_writable_file(options.summary, "--summary");
+  } catch (const Error& e) {
+    exit_with(kExitFatal, e.what());
+  }
+}
+
+void refuse_to_replace(const BatchOptions& options) {
+  if (options.resume || options.force) return;
+  const std::vector<std::filesystem::path> existing = existing_archive_files(options.out);
+  if (existing.empty()) return;
+  std::string found;
+  for (const std::filesystem::path& path : existing) found += (found.empty() ? "" : " and ") + path.string();
+  exit_with(kExitUsage, found + " already exist" + (existing.size() == 1 ? "s" : "") +
+                            " (an earlier run); nothing was changed. Add --resume to continue it (the targets it holds "
+                            "are kept), or --force to start over (its results are deleted)");
+}
+
+void print_interrupted(const BatchSummary& summary) {
+  std::cerr << "xparam batch: interrupted: " << summary.ran << " targets ran and are committed, " << summary.not_run
+            << " did not start; archive " << summary.archive.string() << " holds " << summary.archive_targets
+            << " targets. Run the same command with --resume to continue.\n";
+}
+
 int run_command(const BatchOptions& options) {
   Shard shard;
   std::vector<TargetSpec> discovered;
@@ -156,6 +191,18 @@ int run_command(const BatchOptions& options) {
     discovered = discover_targets(options.targets);
   } catch (const Error& e) {
     exit_with(kExitUsage, e.what());
+  }
+
+  // One writer per archive: the lock comes before anything of the archive is looked at.
+  std::optional<ArchiveLock> lock;
+  if (!options.dry_run) {
+    check_outputs(options);
+    try {
+      lock.emplace(options.out);
+    } catch (const Error& e) {
+      exit_with(kExitFatal, e.what());
+    }
+    refuse_to_replace(options);
   }
 
   PreparedTemplate prepared;
@@ -168,10 +215,12 @@ int run_command(const BatchOptions& options) {
   try {
     const std::map<std::string, ArchiveTargetSummary> committed =
         options.resume ? committed_targets(options.out) : std::map<std::string, ArchiveTargetSummary>{};
-    const BatchPlan plan = plan_batch(discovered, shard, committed, options.retry_failed);
+    const BatchPlan plan =
+        plan_batch(discovered, shard, committed, options.retry_failed, batch_options_json(options.map));
     if (options.dry_run) return run_dry(prepared, plan, options);
 
     print_plan(plan, options, std::cerr);
+    const StopSignals signals;
     BatchSettings settings;
     settings.archive = options.out;
     settings.threads = options.threads;
@@ -179,9 +228,14 @@ int run_command(const BatchOptions& options) {
     settings.keep_parts = options.keep_parts;
     settings.checkpoint_seconds = options.checkpoint_seconds;
     settings.pair = options.map;
+    settings.stop = &signals.requested();
     ProgressPrinter printer;
     const BatchSummary summary = run_batch(prepared, plan, settings, [&](const BatchProgress& p) { printer(p); });
     if (!options.summary.empty()) write_summary(summary, options.summary);
+    if (summary.interrupted) {
+      print_interrupted(summary);
+      return kExitInterrupted;
+    }
     std::cerr << "xparam batch: " << summary.targets.size() << " targets: " << summary.succeeded << " ok, "
               << summary.failed << " failed (" << summary.ran << " run, " << summary.kept << " kept) in "
               << summary.seconds << " s; archive " << summary.archive.string() << " holds "
@@ -201,7 +255,9 @@ void add_batch_command(CLI::App& app) {
       "Cross-parameterize one template against every target of a folder (NAME.obj|ply|off|stl with "
       "NAME.anchors.json|NAME.anchors.txt|NAME.pp beside it, optional NAME.gt.txt) or of a manifest "
       "(schemas/manifest.schema.json), into one HDF5 archive. Exit status: 0 all targets ok, 2 some failed "
-      "(each is recorded with its error), 1 usage error, 3 fatal (bad template, unwritable output).");
+      "(each is recorded with its error), 1 usage error (also: OUT exists and neither --resume nor --force was "
+      "given), 3 fatal (bad template, unwritable output, full disk, OUT locked by another run), 130 interrupted "
+      "(SIGINT/SIGTERM: the targets in flight finish and are committed; --resume continues).");
   batch->add_option("--template", options->template_mesh, "Template mesh (OBJ, PLY, OFF, STL)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -218,7 +274,11 @@ void add_batch_command(CLI::App& app) {
   batch->add_option("-j,--threads", options->threads, "Worker threads for all targets together")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  batch->add_flag("--resume", options->resume, "Continue OUT: run only the targets it does not hold yet");
+  CLI::Option* resume =
+      batch->add_flag("--resume", options->resume,
+                      "Continue OUT: run only the targets it does not hold yet, or whose mesh or anchors changed");
+  batch->add_flag("--force", options->force, "Start over: replace OUT and OUT.parts of an earlier run")
+      ->excludes(resume);
   batch->add_flag("--retry-failed", options->retry_failed, "With --resume, also rerun the targets that failed")
       ->needs("--resume");
   batch->add_option("--shard", options->shard, "Run shard i of N (i/N, 0-based) of the sorted target list")

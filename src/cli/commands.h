@@ -11,6 +11,7 @@ namespace xparam::cli {
 inline constexpr int kExitUsage = 1;        ///< the command line is wrong (unknown option, missing file, bad value)
 inline constexpr int kExitSomeFailed = 2;   ///< the job ran, but some inputs failed (batch targets, check meshes)
 inline constexpr int kExitFatal = 3;        ///< the job could not run or a stage failed (bad template, unwritable output)
+inline constexpr int kExitInterrupted = 130;  ///< batch stopped by SIGINT/SIGTERM; what finished is committed (--resume)
 
 void add_check_command(CLI::App& app);  ///< `xparam check MESH...` (check_command.cpp)
 void add_pair_command(CLI::App& app);   ///< `xparam pair --source S ... --out DIR` (pair_command.cpp)

@@ -1,8 +1,11 @@
 // `xparam merge SHARD.h5... --out ARCHIVE.h5`: combine shard archives into one.
 #include "cli/commands.h"
 
+#include "core/errors.h"
+#include "io/archive_lock.h"
 #include "io/archive_merge.h"
 #include "io/archive_reader.h"
+#include "io/output_paths.h"
 
 #include <CLI/CLI.hpp>
 
@@ -17,7 +20,21 @@ namespace {
 struct MergeOptions {
   std::vector<std::string> shards;
   std::string out;
+  bool force = false;
 };
+
+void run_merge(const MergeOptions& options) {
+  check_writable_file(options.out, "--out");
+  const ArchiveLock lock(options.out);  // no batch run or other merge writes it meanwhile
+  if (!options.force && std::filesystem::exists(options.out)) {
+    std::cerr << "xparam merge: " << options.out
+              << " already exists; nothing was changed. Add --force to replace it, or choose another --out\n";
+    throw CLI::RuntimeError(kExitUsage);
+  }
+  merge_archives({options.shards.begin(), options.shards.end()}, options.out);
+  std::cout << "merged " << ArchiveReader(options.out).targets().size() << " targets from " << options.shards.size()
+            << " shards into " << options.out << "\n";
+}
 
 }  // namespace
 
@@ -27,12 +44,9 @@ void add_merge_command(CLI::App& app) {
       "merge", "Combine shard archives (same template, options and xparam build; disjoint targets) into one "
                "archive whose datasets equal those of a single run over all targets.");
   command->add_option("shards", options->shards, "Shard archives (.h5)")->required()->check(CLI::ExistingFile);
-  command->add_option("--out", options->out, "Merged archive to write (replaced if it exists)")->required();
-  command->callback([options] {
-    merge_archives({options->shards.begin(), options->shards.end()}, options->out);
-    std::cout << "merged " << ArchiveReader(options->out).targets().size() << " targets from "
-              << options->shards.size() << " shards into " << options->out << "\n";
-  });
+  command->add_option("--out", options->out, "Merged archive to write")->required();
+  command->add_flag("--force", options->force, "Replace --out when it exists");
+  command->callback([options] { run_merge(*options); });
 }
 
 }  // namespace xparam::cli

@@ -176,6 +176,10 @@ class LocatingSax {
   }
 
   bool open(Json container) {
+    if (frames_.size() >= kMaxJsonDepth)
+      fail_at(source_, current_line(false),
+              "JSON nested deeper than " + std::to_string(kMaxJsonDepth) +
+                  " levels (anchor and curve files need 4): is this the right file?");
     std::string path;
     if (!frames_.empty()) {
       const Frame& parent = frames_.back();

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstddef>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -53,10 +54,15 @@ struct LocatedJson {
   int line(const std::string& pointer) const;
 };
 
+/// Deepest nesting of arrays and objects parse_located_json accepts. Anchor and curve files
+/// need 4 levels; the bound keeps memory proportional to the input (each open level holds its
+/// JSON pointer, so unbounded nesting would cost the square of the depth).
+inline constexpr std::size_t kMaxJsonDepth = 64;
+
 /// Parse JSON, refusing a member name given twice in one object (a plain parse keeps the
-/// last silently, losing an anchor).
-/// \throw InputError "source: invalid JSON at byte N: ..." or "source:line: duplicate member "x" (first at
-/// line M)"
+/// last silently, losing an anchor) and nesting deeper than kMaxJsonDepth.
+/// \throw InputError "source: invalid JSON at byte N: ...", "source:line: duplicate member "x" (first at
+/// line M)" or "source:line: JSON nested deeper than 64 levels ..."
 LocatedJson parse_located_json(const std::string& text, const std::string& source);
 
 /// `name` escaped for use as one JSON pointer token ("~" -> "~0", "/" -> "~1").

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "io/archive_reader.h"
+#include "io/options_difference.h"
 
 #include <algorithm>
 #include <cctype>
@@ -82,8 +83,9 @@ void require_same_run(const std::filesystem::path& recorded_in, const TemplateRe
     throw ArchiveError(recorded_in.string() + ": cannot resume: the template differs from the one the archive was "
                                               "started with (" + recorded_template.mesh_file + ")");
   if (recorded.options_json != provenance.options_json)
-    throw ArchiveError(recorded_in.string() + ": cannot resume: options differ from the recorded ones " +
-                       recorded.options_json);
+    throw ArchiveError(recorded_in.string() + ": cannot resume: " +
+                       options_difference(recorded.options_json, provenance.options_json) +
+                       "; run with the archive's options to continue it, or with --force to start over");
 }
 
 template <typename A, typename B>
@@ -97,6 +99,15 @@ std::filesystem::path parts_directory(const std::filesystem::path& archive) {
   std::filesystem::path directory = archive;
   directory += ".parts";
   return directory;
+}
+
+std::vector<std::filesystem::path> existing_archive_files(const std::filesystem::path& archive) {
+  std::vector<std::filesystem::path> found;
+  for (const std::filesystem::path& path : {archive, parts_directory(archive)}) {
+    std::error_code error;
+    if (std::filesystem::exists(path, error)) found.push_back(path);
+  }
+  return found;
 }
 
 std::filesystem::path target_part_path(const std::filesystem::path& archive, const std::string& name) {
@@ -177,7 +188,7 @@ bool BatchArchive::is_committed(const std::string& name) const {
 }
 
 void BatchArchive::commit(const TargetRecord& target) {
-  write_target_part(target_part_path(archive_, target.name), shape_, target, settings_);
+  write_target_part(target_part_path(archive_, target.name), shape_, target, provenance_.options_json, settings_);
   const std::lock_guard lock(*mutex_);
   committed_.insert(target.name);
 }

@@ -32,14 +32,21 @@ namespace xparam {
 /// "<archive>.parts": the directory of committed parts.
 std::filesystem::path parts_directory(const std::filesystem::path& archive);
 
+/// What an earlier run left at `archive` that starting over would replace: the archive file and
+/// its parts directory, those that exist (a new run refuses to start unless told to resume
+/// them or to start over).
+std::vector<std::filesystem::path> existing_archive_files(const std::filesystem::path& archive);
+
 /// The part file of target `name` (the name percent-encoded so any name is a safe file name).
 std::filesystem::path target_part_path(const std::filesystem::path& archive, const std::string& name);
 
-/// An archive being filled by a batch run. One process writes an archive at a time;
-/// within it, commit() may be called from several threads at once.
+/// An archive being filled by a batch run. One process writes an archive at a time (the
+/// caller holds its io/archive_lock.h lock); within it, commit() may be called from several
+/// threads at once.
 class BatchArchive {
  public:
-  /// Start a new archive at `archive` (an existing archive and its parts are replaced);
+  /// Start a new archive at `archive` (an existing archive and its parts are replaced: callers
+  /// ask the user first, see existing_archive_files);
   /// ARCHIVE.h5 exists with zero targets when this returns.
   static BatchArchive create(const std::filesystem::path& archive, const TemplateRecord& template_record,
                              const ArchiveProvenance& provenance, const ArchiveWriteSettings& settings = {});

@@ -9,7 +9,16 @@ namespace {
 
 // HDF5 prints its error stack to stderr unless told not to; xparam reports through exceptions.
 // The setting is per thread in the thread-safe library, so every entry that opens a file sets it.
-void silence_hdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+//
+// HDF5's own atexit teardown is switched off first (it must precede any other call): after a
+// write failed (ENOSPC, EIO) the library keeps the half-closed file, and its teardown at exit
+// tried to flush it again and crashed (rc 139 in H5F__close_cb). Every file xparam opens is
+// closed by its Handle; what a failed close leaves behind is freed by the process's exit.
+void silence_hdf5() {
+  static const bool no_teardown_at_exit = H5dont_atexit() >= 0;
+  static_cast<void>(no_teardown_at_exit);
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
 
 herr_t keep_innermost(unsigned position, const H5E_error2_t* entry, void* client) {
   if (position == 0 && entry->desc != nullptr) *static_cast<std::string*>(client) = entry->desc;
@@ -76,6 +85,7 @@ void write_attribute_raw(hid_t object, const std::string& name, hid_t file_type,
                               where, "cannot create attribute " + name),
                    H5Aclose, where + "@" + name);
   check(H5Awrite(attribute.get(), memory_type, data), where, "cannot write attribute " + name);
+  attribute.close();
 }
 
 std::vector<const char*> c_strings(const std::vector<std::string>& values) {
@@ -144,7 +154,9 @@ std::string describe(hid_t object) {
 Handle create_file(const std::filesystem::path& path) {
   silence_hdf5();
   const Handle creation = object_creation_plist(H5P_FILE_CREATE);
-  return {H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation.get(), H5P_DEFAULT), H5Fclose, path.string()};
+  const Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access property list");
+  check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), path.string(), "cannot set the close degree");
+  return {H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()), H5Fclose, path.string()};
 }
 
 Handle open_file(const std::filesystem::path& path) {
@@ -202,6 +214,7 @@ Handle create_dataset(hid_t parent, const std::string& name, hid_t file_type, co
     check(H5Pset_chunk(creation.get(), static_cast<int>(chunk.size()), chunk.data()), where, "cannot set chunks");
     check(H5Pset_deflate(creation.get(), static_cast<unsigned>(storage.deflate_level)), where,
           "cannot set deflate");
+    check(H5Pset_fletcher32(creation.get()), where, "cannot set the Fletcher-32 checksum");
     space = dataspace(dims, &max_dims);
   } else {
     space = dataspace(dims);
@@ -238,7 +251,7 @@ void read_rows(hid_t dataset, hid_t memory_type, hsize_t first_row, hsize_t n_ro
   if (n_rows == 0) return;
   const auto [file_space, memory_space] = row_selection(dataset, first_row, n_rows);
   check(H5Dread(dataset, memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT, data), describe(dataset),
-        "cannot read rows");
+        "cannot read rows: the dataset is damaged or unreadable");
 }
 
 Handle string_type() {
@@ -250,11 +263,12 @@ Handle string_type() {
 
 void write_strings(hid_t parent, const std::string& name, const std::vector<std::string>& values) {
   const Handle type = string_type();
-  const Handle dataset = create_dataset(parent, name, type.get(), {values.size()}, Storage{});
+  Handle dataset = create_dataset(parent, name, type.get(), {values.size()}, Storage{});
   const std::vector<const char*> pointers = c_strings(values);
   if (!values.empty())
     check(H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()), describe(dataset.get()),
           "cannot write strings");
+  dataset.close();
 }
 
 std::vector<std::string> read_strings(hid_t parent, const std::string& name) {

@@ -46,7 +46,11 @@ void check(herr_t status, const std::string& where, const std::string& what);
 std::string describe(hid_t object);
 
 /// Create (truncate) a file for writing; object modification times are not recorded so
-/// that identical content gives identical bytes.
+/// that identical content gives identical bytes. The file closes with H5F_CLOSE_SEMI: closing
+/// it while one of its objects is still open is an error rather than a close deferred to the
+/// last object's destructor (which would flush after the caller renamed the file into place).
+/// Close every object, then the file, with Handle::close so that a failed flush (ENOSPC, EIO)
+/// throws.
 Handle create_file(const std::filesystem::path& path);
 /// Open an existing file read-only; ArchiveError when it is missing or not HDF5.
 Handle open_file(const std::filesystem::path& path);
@@ -87,10 +91,11 @@ struct TypeOf<std::int64_t> {
 };
 
 /// How a dataset is stored: `chunk_rows` rows of axis 0 per chunk (0 = contiguous), deflated
-/// at `deflate_level` when chunked. Chunked datasets get an unlimited axis 0 so that a
-/// dataset with zero rows is valid too.
+/// at `deflate_level` and checksummed (Fletcher-32, after deflate, so the stored bytes are
+/// what is checked) when chunked: a read of a corrupted chunk then fails naming the dataset.
+/// Chunked datasets get an unlimited axis 0 so that a dataset with zero rows is valid too.
 struct Storage {
-  hsize_t chunk_rows = 0;  ///< rows per chunk; 0 stores the dataset contiguously, uncompressed
+  hsize_t chunk_rows = 0;  ///< rows per chunk; 0 stores the dataset contiguously, uncompressed, unchecked
   int deflate_level = 4;   ///< zlib level 1..9 (the one filter every HDF5 build has)
 };
 

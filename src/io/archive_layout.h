@@ -13,6 +13,7 @@ namespace xparam::archive_layout {
 inline constexpr const char* kFormat = "xparam-archive";  ///< root attribute `format`
 inline constexpr const char* kPartFormat = "xparam-archive-part";  ///< `format` of a one-target part file
 inline constexpr hsize_t kCurveChunkRows = 4096;          ///< rows per chunk of the flat curve-point arrays
+inline constexpr hsize_t kTableChunkRows = 256;           ///< rows (targets) per chunk of the small per-target tables
 
 /// One row of /targets/metrics in memory; the file type is the packed compound of metrics_type().
 struct MetricsRow {

@@ -41,6 +41,7 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
     n_faces_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_faces"));
     n_curves_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_curves"));
     n_anchors_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_anchors"));
+    if (H5Aexists(file, "options_json") > 0) provenance_.options_json = h5::read_string_attribute(file, "options_json");
   } else {
     provenance_ = {h5::read_string_attribute(file, "xparam_version"),
                    h5::read_string_attribute(file, "git_revision"), h5::read_string_attribute(file, "options_json")};
@@ -89,6 +90,7 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
     t.anchors_file = anchors_files[i];
     t.mesh_sha256 = mesh_sha256[i];
     t.anchors_sha256 = anchors_sha256[i];
+    t.options_json = provenance_.options_json;
     t.metrics = archive_layout::from_row(metrics[i]);
     std::copy_n(timings.begin() + static_cast<std::ptrdiff_t>(i * kTimingStages.size()), kTimingStages.size(),
                 t.seconds.begin());

@@ -26,6 +26,9 @@ struct ArchiveTargetSummary {
   std::string anchors_file;    ///< input anchor file
   std::string mesh_sha256;     ///< SHA-256 of the mesh file
   std::string anchors_sha256;  ///< SHA-256 of the anchor file
+  /// The options the target ran with: the archive's options_json, or a part file's own (empty
+  /// for a part written before parts recorded them).
+  std::string options_json;
   TargetMetrics metrics;       ///< the metrics table row
   StageSeconds seconds{};      ///< the timings row
 };
@@ -40,7 +43,7 @@ class ArchiveReader {
 
   /// The archive's file name.
   const std::filesystem::path& path() const { return path_; }
-  /// Root attributes: who wrote it, with which options.
+  /// Root attributes: who wrote it, with which options (a part file: its options_json only).
   const ArchiveProvenance& provenance() const { return provenance_; }
   /// Root attribute schema_version.
   int schema_version() const { return schema_version_; }

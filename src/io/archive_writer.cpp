@@ -24,7 +24,17 @@ void require(bool condition, const std::string& where, const std::string& what) 
 
 std::string count_text(std::size_t count, const char* unit) { return std::to_string(count) + " " + unit; }
 
-void write_template(hid_t file, const TemplateRecord& t) {
+// Create dataset `name` of T under `parent` holding `n_rows` rows of `data` (row-major), one
+// checksummed chunk for all of it, and close it (checked).
+template <typename T>
+void write_whole(hid_t parent, const std::string& name, std::vector<hsize_t> dims, const T* data, int deflate_level) {
+  const hsize_t n_rows = dims[0];
+  h5::Handle dataset = h5::create_dataset<T>(parent, name, dims, h5::Storage{std::max<hsize_t>(n_rows, 1), deflate_level});
+  h5::write_rows<T>(dataset.get(), 0, n_rows, data);
+  dataset.close();
+}
+
+void write_template(hid_t file, const TemplateRecord& t, int deflate_level) {
   h5::Handle group = h5::create_group(file, "template");
   h5::write_attribute(group.get(), "mesh_file", t.mesh_file);
   h5::write_attribute(group.get(), "anchors_file", t.anchors_file);
@@ -34,19 +44,16 @@ void write_template(hid_t file, const TemplateRecord& t) {
   h5::write_attribute(group.get(), "curves_sha256", t.curves_sha256);
 
   const RowMajorX3d vertices = t.vertices;
-  const auto n_vertices = static_cast<hsize_t>(vertices.rows());
-  h5::write_rows(h5::create_dataset<double>(group.get(), "vertices", {n_vertices, 3}, {}).get(), 0, n_vertices,
-                 vertices.data());
-  const RowMajorX3i faces = t.faces;
-  const auto n_faces = static_cast<hsize_t>(faces.rows());
-  h5::write_rows<std::int32_t>(h5::create_dataset<std::int32_t>(group.get(), "faces", {n_faces, 3}, {}).get(), 0,
-                               n_faces, faces.data());
+  write_whole<double>(group.get(), "vertices", {static_cast<hsize_t>(vertices.rows()), 3}, vertices.data(),
+                      deflate_level);
+  const Eigen::Matrix<std::int32_t, Eigen::Dynamic, 3, Eigen::RowMajor> faces = t.faces.cast<std::int32_t>();
+  write_whole<std::int32_t>(group.get(), "faces", {static_cast<hsize_t>(faces.rows()), 3}, faces.data(),
+                            deflate_level);
 
   h5::write_strings(group.get(), "anchor_names", t.anchor_names);
-  const hsize_t n_anchors = t.anchor_vertices.size();
-  h5::write_rows<std::int32_t>(
-      h5::create_dataset<std::int32_t>(group.get(), "anchor_vertices", {n_anchors}, {}).get(), 0, n_anchors,
-      t.anchor_vertices.data());
+  const std::vector<std::int32_t> anchor_vertices(t.anchor_vertices.begin(), t.anchor_vertices.end());
+  write_whole<std::int32_t>(group.get(), "anchor_vertices", {anchor_vertices.size()}, anchor_vertices.data(),
+                            deflate_level);
 
   // Ragged curves: the points of curve c are rows offsets[c] .. offsets[c+1] of face / bary.
   h5::Handle curves = h5::create_group(group.get(), "curves");
@@ -62,13 +69,11 @@ void write_template(hid_t file, const TemplateRecord& t) {
     point_bary.insert(point_bary.end(), bary.data(), bary.data() + bary.size());
   }
   h5::write_strings(curves.get(), "names", names);
-  h5::write_rows(h5::create_dataset<std::int64_t>(curves.get(), "offsets", {offsets.size()}, {}).get(), 0,
-                 offsets.size(), offsets.data());
-  const hsize_t n_points = point_face.size();
-  h5::write_rows(h5::create_dataset<std::int32_t>(curves.get(), "face", {n_points}, {}).get(), 0, n_points,
-                 point_face.data());
-  h5::write_rows(h5::create_dataset<double>(curves.get(), "bary", {n_points, 3}, {}).get(), 0, n_points,
-                 point_bary.data());
+  write_whole<std::int64_t>(curves.get(), "offsets", {offsets.size()}, offsets.data(), deflate_level);
+  write_whole<std::int32_t>(curves.get(), "face", {point_face.size()}, point_face.data(), deflate_level);
+  write_whole<double>(curves.get(), "bary", {point_face.size(), 3}, point_bary.data(), deflate_level);
+  curves.close();
+  group.close();
 }
 
 // The stacked per-target datasets, written one row (one target) at a time.
@@ -82,6 +87,7 @@ class TargetTables {
         n_anchors_(shape.n_anchors) {
     const hsize_t n = count;
     const h5::Storage per_subject{1, settings.deflate_level};
+    const h5::Storage table{archive_layout::kTableChunkRows, settings.deflate_level};
     remesh_vertices_ = h5::create_dataset<double>(group_.get(), "remesh_vertices", {n, n_vertices_, 3}, per_subject);
     corr_face_ = h5::create_dataset<std::int32_t>(group_.get(), "corr_face", {n, n_vertices_}, per_subject);
     corr_bary_ = h5::create_dataset<double>(group_.get(), "corr_bary", {n, n_vertices_, 3}, per_subject);
@@ -89,17 +95,17 @@ class TargetTables {
     face_l2_stretch_ = h5::create_dataset<double>(group_.get(), "face_l2_stretch", {n, n_faces_}, per_subject);
     face_angle_distortion_ =
         h5::create_dataset<double>(group_.get(), "face_angle_distortion", {n, n_faces_}, per_subject);
-    anchor_miss_ = h5::create_dataset<double>(group_.get(), "anchor_miss", {n, n_anchors_}, {});
+    anchor_miss_ = h5::create_dataset<double>(group_.get(), "anchor_miss", {n, n_anchors_}, table);
     const h5::Handle metrics_file_type = archive_layout::metrics_type(true);
-    metrics_ = h5::create_dataset(group_.get(), "metrics", metrics_file_type.get(), {n}, {});
-    timings_ = h5::create_dataset<double>(group_.get(), "timings", {n, kTimingStages.size()}, {});
+    metrics_ = h5::create_dataset(group_.get(), "metrics", metrics_file_type.get(), {n}, table);
+    timings_ = h5::create_dataset<double>(group_.get(), "timings", {n, kTimingStages.size()}, table);
     h5::write_attribute(timings_.get(), "stages", std::vector<std::string>(kTimingStages.begin(), kTimingStages.end()));
     h5::write_attribute(timings_.get(), "unit", std::string("seconds"));
     const h5::Handle status_file_type = archive_layout::status_type();
-    status_ = h5::create_dataset(group_.get(), "status", status_file_type.get(), {n}, {});
+    status_ = h5::create_dataset(group_.get(), "status", status_file_type.get(), {n}, table);
 
     curves_ = h5::create_group(group_.get(), "curves");
-    curve_offsets_ = h5::create_dataset<std::int64_t>(curves_.get(), "offsets", {n, n_curves_ + 1}, {});
+    curve_offsets_ = h5::create_dataset<std::int64_t>(curves_.get(), "offsets", {n, n_curves_ + 1}, table);
     const h5::Storage flat{archive_layout::kCurveChunkRows, settings.deflate_level};
     curve_face_ = h5::create_dataset<std::int32_t>(curves_.get(), "face", {0}, flat);
     curve_bary_ = h5::create_dataset<double>(curves_.get(), "bary", {0, 3}, flat);
@@ -148,6 +154,8 @@ class TargetTables {
     write_curves(row, target);
   }
 
+  // Write the string columns and close every dataset and group (checked: a close flushes, and
+  // a failed flush must throw before the file is closed and renamed into place).
   void finish() {
     h5::write_strings(group_.get(), "name", names_);
     h5::write_strings(group_.get(), "error", errors_);
@@ -155,6 +163,10 @@ class TargetTables {
     h5::write_strings(group_.get(), "anchors_file", anchors_files_);
     h5::write_strings(group_.get(), "mesh_sha256", mesh_sha256_);
     h5::write_strings(group_.get(), "anchors_sha256", anchors_sha256_);
+    for (h5::Handle* handle : {&remesh_vertices_, &corr_face_, &corr_bary_, &face_patch_, &face_l2_stretch_,
+                               &face_angle_distortion_, &anchor_miss_, &metrics_, &timings_, &status_,
+                               &curve_offsets_, &curve_face_, &curve_bary_, &curve_xyz_, &curves_, &group_})
+      handle->close();
   }
 
  private:
@@ -298,7 +310,7 @@ void write_archive(const std::filesystem::path& path, const TemplateRecord& temp
     h5::write_attribute(file.get(), "xparam_version", provenance.xparam_version);
     h5::write_attribute(file.get(), "git_revision", provenance.git_revision);
     h5::write_attribute(file.get(), "options_json", provenance.options_json);
-    write_template(file.get(), template_record);
+    write_template(file.get(), template_record, settings.deflate_level);
 
     TargetTables tables(file.get(), shape_of(template_record), count, settings);
     std::string previous;
@@ -332,7 +344,7 @@ void write_archive(const std::filesystem::path& path, const TemplateRecord& temp
 }
 
 void write_target_part(const std::filesystem::path& path, const ArchiveShape& shape, const TargetRecord& target,
-                       const ArchiveWriteSettings& settings) {
+                       const std::string& options_json, const ArchiveWriteSettings& settings) {
   validate_target_record(shape, target);
   const std::filesystem::path temporary = temporary_path(path);
   try {
@@ -343,6 +355,7 @@ void write_target_part(const std::filesystem::path& path, const ArchiveShape& sh
     h5::write_attribute(file.get(), "n_faces", static_cast<std::int64_t>(shape.n_faces));
     h5::write_attribute(file.get(), "n_curves", static_cast<std::int64_t>(shape.n_curves));
     h5::write_attribute(file.get(), "n_anchors", static_cast<std::int64_t>(shape.n_anchors));
+    h5::write_attribute(file.get(), "options_json", options_json);
     TargetTables tables(file.get(), shape, 1, settings);
     tables.write(0, target);
     tables.finish();

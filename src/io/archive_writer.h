@@ -62,9 +62,10 @@ void validate_target_record(const ArchiveShape& shape, const TargetRecord& targe
 
 /// Write one target alone as a "part" file (the unit of the commit protocol of
 /// io/archive_commit.h): root attributes format = "xparam-archive-part", schema_version,
-/// n_vertices, n_faces, n_curves, and a /targets group with one row, laid out as in an
-/// archive. Written to "<path>.tmp", synced and renamed, so `path` is complete or absent.
+/// n_vertices, n_faces, n_curves, options_json (the options the target ran with), and a
+/// /targets group with one row, laid out as in an archive. Written to "<path>.tmp", synced
+/// and renamed, so `path` is complete or absent.
 void write_target_part(const std::filesystem::path& path, const ArchiveShape& shape, const TargetRecord& target,
-                       const ArchiveWriteSettings& settings = {});
+                       const std::string& options_json, const ArchiveWriteSettings& settings = {});
 
 }  // namespace xparam

@@ -62,4 +62,13 @@ std::string sha256_file_hex(const std::filesystem::path& file) {
   return digest.hex();
 }
 
+std::string sha256_file_hex_or_empty(const std::filesystem::path& file) {
+  if (file.empty()) return {};
+  try {
+    return sha256_file_hex(file);
+  } catch (const InputError&) {
+    return {};
+  }
+}
+
 }  // namespace xparam

@@ -16,4 +16,8 @@ std::string sha256_hex(std::string_view bytes);
 /// \throw InputError when the file cannot be opened or read.
 std::string sha256_file_hex(const std::filesystem::path& file);
 
+/// sha256_file_hex, or empty when `file` is empty (no such input) or cannot be read: what the
+/// archive records for an input, whose reading failure is reported by the load that follows.
+std::string sha256_file_hex_or_empty(const std::filesystem::path& file);
+
 }  // namespace xparam

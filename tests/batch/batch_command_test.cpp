@@ -5,16 +5,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <thread>
-
-extern char** environ;
 
 namespace xparam {
 namespace {
@@ -156,30 +151,6 @@ TEST(BatchCommand, UsageAndFatalErrorsHaveTheirExitCodes) {
   EXPECT_FALSE(std::filesystem::exists(dir / "a.h5"));
 }
 
-// Start `xparam batch ARGS...` as a child process; returns its pid.
-pid_t spawn_batch(const std::vector<std::string>& arguments, const path& log) {
-  std::vector<std::string> words = {test::xparam_binary().string(), "batch"};
-  words.insert(words.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  EXPECT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  return pid;
-}
-
-bool has_committed_part(const path& archive) {
-  const path parts = archive.string() + ".parts/targets";
-  if (!std::filesystem::is_directory(parts)) return false;
-  for (const auto& entry : std::filesystem::directory_iterator(parts))
-    if (entry.path().extension() == ".h5") return true;
-  return false;
-}
-
 TEST(BatchCommand, KilledRunResumesToTheDatasetsOfAnUninterruptedRun) {
   const path dir = test::fresh_temp_dir("command_kill");
   test::copy_sample_targets(dir / "targets", {"woman", "man_bent"});
@@ -187,7 +158,7 @@ TEST(BatchCommand, KilledRunResumesToTheDatasetsOfAnUninterruptedRun) {
   ASSERT_EQ(batch(dir, common + " --out " + quoted(dir / "full.h5")), 0) << test::read_file(dir / "stderr.txt");
 
   const path archive = dir / "killed.h5";
-  const pid_t child = spawn_batch({"--template", test::data_path("human_man.obj").string(), "--template-anchors",
+  const pid_t child = test::spawn_batch({"--template", test::data_path("human_man.obj").string(), "--template-anchors",
                                    test::data_path("human.anchors.json").string(), "--curves",
                                    test::data_path("human_man.curves.json").string(), "--targets",
                                    (dir / "targets").string(), "-j", "1", "--checkpoint-seconds", "0",
@@ -195,7 +166,7 @@ TEST(BatchCommand, KilledRunResumesToTheDatasetsOfAnUninterruptedRun) {
                                   dir / "killed.log");
   ASSERT_GT(child, 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!has_committed_part(archive) && std::chrono::steady_clock::now() < deadline)
+  while (!test::has_committed_part(archive) && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ASSERT_EQ(kill(child, SIGKILL), 0);
   int status = 0;

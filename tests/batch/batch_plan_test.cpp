@@ -52,6 +52,22 @@ TEST(BatchPlan, ResumeKeepsCommittedTargetsAndRetriesFailedOnlyWhenAsked) {
   EXPECT_EQ(actions(retry), (std::vector<TargetAction>{TargetAction::KeepDone, TargetAction::Run, TargetAction::Run}));
 }
 
+// A kept row is only ever a row of this run's options: a part recorded with other options (two
+// writers once mixed them) runs again, and the plan says which option and both values. A record
+// without options (a part of an older xparam) is judged by the archive's options alone.
+TEST(BatchPlan, TargetsOfOtherOptionsRunAgainNamingTheOption) {
+  std::map<std::string, ArchiveTargetSummary> archive = {
+      {"a", committed("a", true)}, {"b", committed("b", true)}, {"c", committed("c", true)}};
+  archive["a"].options_json = R"({"relax":true,"optimization":{"merge":true}})";
+  archive["b"].options_json = R"({"relax":true,"optimization":{"merge":false}})";
+  const BatchPlan plan = plan_batch(specs({"a", "b", "c"}), {}, archive, false,
+                                    R"({"relax":true,"optimization":{"merge":false}})");
+  EXPECT_EQ(actions(plan),
+            (std::vector<TargetAction>{TargetAction::Run, TargetAction::KeepDone, TargetAction::KeepDone}));
+  EXPECT_EQ(plan.targets[0].reason, "it ran with other options: option \"optimization.merge\" was true, now false");
+  EXPECT_TRUE(plan.targets[1].reason.empty());
+}
+
 // committed_targets reads rows of ARCHIVE.h5 and parts beside it, a part overriding a row.
 TEST(BatchPlan, CommittedTargetsReadsArchiveRowsAndParts) {
   const path dir = test::fresh_temp_dir("plan_committed");

@@ -9,14 +9,20 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
+
+extern char** environ;
 
 namespace xparam::test {
 
@@ -123,6 +129,53 @@ inline std::string quoted(const fs::path& path) {
 inline int run_status(const std::string& command) {
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Start `xparam batch ARGS...` as a child process with stderr into `log` and `extra_environment`
+// ("NAME=value") added to this process's environment (replacing variables of the same name);
+// returns its pid.
+inline pid_t spawn_batch(const std::vector<std::string>& arguments, const fs::path& log,
+                         const std::vector<std::string>& extra_environment = {}) {
+  std::vector<std::string> words = {xparam_binary().string(), "batch"};
+  words.insert(words.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> variables(extra_environment);
+  std::vector<char*> envp;
+  const auto replaced = [&](const char* variable) {
+    for (const std::string& v : variables)
+      if (std::strncmp(variable, v.data(), v.find('=') + 1) == 0) return true;
+    return false;
+  };
+  for (char** e = environ; *e != nullptr; ++e)
+    if (!replaced(*e)) envp.push_back(*e);
+  for (std::string& v : variables) envp.push_back(v.data());
+  envp.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  EXPECT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data()), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+// Wait for child `pid`; its exit status, or -signal when a signal ended it.
+inline int wait_status(pid_t pid) {
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid) return -1000;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+// Whether a target part of `archive` is committed (renamed into place).
+inline bool has_committed_part(const fs::path& archive) {
+  const fs::path parts = archive.string() + ".parts/targets";
+  if (!fs::is_directory(parts)) return false;
+  for (const auto& entry : fs::directory_iterator(parts))
+    if (entry.path().extension() == ".h5") return true;
+  return false;
 }
 
 }  // namespace xparam::test

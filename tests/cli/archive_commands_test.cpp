@@ -1,6 +1,7 @@
 // `xparam inspect`, `xparam export` and `xparam merge` run as a user runs them, on archives
 // written from synthetic records (the archive and the commands are what is under test; each
 // target's arrays differ, so a row mix-up shows).
+#include "io/archive_hdf5.h"
 #include "io/archive_reader.h"
 #include "io/archive_writer.h"
 #include "io/mesh_reader.h"
@@ -211,12 +212,72 @@ TEST(MergeCommand, ShardsMergeIntoTheSingleRunArchive) {
   EXPECT_EQ(file_bytes(dir / "merged.h5"), file_bytes(dir / "single.h5"));
   EXPECT_TRUE(fs::exists(dir / "merged.xdmf"));
 
+  // An existing archive is replaced only with --force.
+  run = run_xparam("merge " + (dir / "s2.h5").string() + " --out " + (dir / "merged.h5").string(), dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("already exists; nothing was changed. Add --force"), std::string::npos) << run.err;
+  EXPECT_EQ(file_bytes(dir / "merged.h5"), file_bytes(dir / "single.h5"));
+  run = run_xparam("merge " + (dir / "s2.h5").string() + " --force --out " + (dir / "merged.h5").string(), dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(ArchiveReader(dir / "merged.h5").targets().size(), 2u);
+
   run = run_xparam("merge " + (dir / "s1.h5").string() + " " + (dir / "single.h5").string() + " --out " +
                        (dir / "overlap.h5").string(),
                    dir);
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("is in both"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(dir / "overlap.h5"));
+  fs::remove_all(dir);
+}
+
+// Flip one byte in the middle of the stored chunk of row `row` of `dataset` in `archive`.
+void flip_byte_in_chunk(const fs::path& archive, const std::string& dataset, hsize_t row) {
+  haddr_t address = 0;
+  hsize_t size = 0;
+  {
+    const h5::Handle file = h5::open_file(archive);
+    const h5::Handle data = h5::open_dataset(file.get(), dataset);
+    std::vector<hsize_t> offset(h5::shape(data.get()).size(), 0);
+    offset[0] = row;
+    unsigned filters = 0;
+    h5::check(H5Dget_chunk_info_by_coord(data.get(), offset.data(), &filters, &address, &size), dataset,
+              "no chunk");
+  }
+  std::fstream bytes(archive, std::ios::in | std::ios::out | std::ios::binary);
+  const auto at = static_cast<std::streamoff>(address + size / 2);
+  bytes.seekg(at);
+  const char old = static_cast<char>(bytes.get());
+  bytes.seekp(at);
+  bytes.put(static_cast<char>(old ^ 0x10));
+}
+
+// Every numeric dataset carries a Fletcher-32 checksum: a flipped byte is found by inspect
+// --verify, by export and by merge, each naming the dataset; nothing is written from it.
+TEST(ArchiveIntegrity, FlippedByteIsDetectedAndTheDatasetNamed) {
+  const fs::path dir = test::fresh_temp_dir("cli_integrity");
+  const TemplateRecord t = make_template();
+  write_archive(dir / "run.h5", t, provenance(), make_targets(t));
+  const std::string archive = (dir / "run.h5").string();
+  CommandRun run = run_xparam("inspect --verify " + archive, dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("every checksum matches"), std::string::npos) << run.err;
+
+  flip_byte_in_chunk(dir / "run.h5", "targets/remesh_vertices", 1);  // bob's row
+  run = run_xparam("inspect --verify " + archive, dir);
+  EXPECT_EQ(run.exit_code, 3);
+  EXPECT_NE(run.err.find(archive + ":/targets/remesh_vertices: cannot read rows: the dataset is damaged"),
+            std::string::npos)
+      << run.err;
+  run = run_xparam("export " + archive + " --target bob --out " + (dir / "bob.obj").string(), dir);
+  EXPECT_EQ(run.exit_code, 3);
+  EXPECT_NE(run.err.find("/targets/remesh_vertices"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "bob.obj"));
+  run = run_xparam("export " + archive + " --target alice --out " + (dir / "alice.obj").string(), dir);
+  EXPECT_EQ(run.exit_code, 0) << run.err;  // the other rows are intact
+  run = run_xparam("merge " + archive + " --out " + (dir / "merged.h5").string(), dir);
+  EXPECT_EQ(run.exit_code, 3);
+  EXPECT_NE(run.err.find("/targets/remesh_vertices"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "merged.h5"));
   fs::remove_all(dir);
 }
 

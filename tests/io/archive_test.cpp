@@ -294,13 +294,27 @@ TEST(Archive, StoredLayoutIsChunkedPerSubjectDeflatedAndFilled) {
   std::vector<hsize_t> chunk(3);
   ASSERT_EQ(H5Pget_chunk(plist.get(), 3, chunk.data()), 3);
   EXPECT_EQ(chunk, (std::vector<hsize_t>{1, 12, 3}));
-  ASSERT_EQ(H5Pget_nfilters(plist.get()), 1);
+  // Deflate, then the Fletcher-32 checksum of the stored (deflated) bytes.
+  ASSERT_EQ(H5Pget_nfilters(plist.get()), 2);
   unsigned flags = 0;
   std::size_t n_values = 1;
   unsigned level = 0;
   EXPECT_EQ(H5Pget_filter2(plist.get(), 0, &flags, &n_values, &level, 0, nullptr, nullptr),
             H5Z_FILTER_DEFLATE);
   EXPECT_EQ(level, 4u);
+  n_values = 0;
+  EXPECT_EQ(H5Pget_filter2(plist.get(), 1, &flags, &n_values, nullptr, 0, nullptr, nullptr),
+            H5Z_FILTER_FLETCHER32);
+  // Every numeric dataset is checksummed, the small tables and the template's too.
+  for (const char* name : {"targets/metrics", "targets/status", "targets/timings", "targets/anchor_miss",
+                           "targets/curves/offsets", "template/vertices", "template/faces"}) {
+    const h5::Handle dataset = h5::open_dataset(file.get(), name);
+    const h5::Handle creation(H5Dget_create_plist(dataset.get()), H5Pclose, name);
+    EXPECT_EQ(H5Pget_filter_by_id2(creation.get(), H5Z_FILTER_FLETCHER32, &flags, &n_values, nullptr, 0, nullptr,
+                                   nullptr),
+              0)
+        << name;
+  }
 
   // Row 3 is the failed subject_05: NaN positions, -1 faces and patches.
   const std::vector<double> failed = h5::read_rows<double>(remesh.get(), 3, 1);

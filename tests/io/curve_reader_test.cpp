@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 
+#include <fstream>
 #include <set>
 
 namespace xparam {
@@ -142,6 +143,22 @@ TEST(CurveReader, ValidationErrorsNameFileCurveAndPoint) {
 TEST(CurveReader, FileErrorsNameThePath) {
   EXPECT_MESSAGE_HAS(test::error_message_of([] { read_curves(test::data_path("no_such.curves.json")); }),
                      "no_such.curves.json: cannot open the file");
+}
+
+// 100 KB of '[' once took 2.3 GB (each open level kept its JSON pointer) and failed with a bare
+// std::bad_alloc; now both readers stop at kMaxJsonDepth, naming the file. 64 levels still parse.
+TEST(JsonReaders, NestingIsBoundedAndTheErrorNamesTheFile) {
+  const std::filesystem::path dir = test::fresh_temp_dir("json_depth");
+  for (const char* name : {"deep.anchors.json", "deep.curves.json"}) {
+    std::ofstream(dir / name) << std::string(100000, '[');
+  }
+  EXPECT_MESSAGE_HAS(test::error_message_of([&] { read_anchors(dir / "deep.anchors.json"); }),
+                     "deep.anchors.json:1: JSON nested deeper than 64 levels");
+  EXPECT_MESSAGE_HAS(test::error_message_of([&] { read_curves(dir / "deep.curves.json"); }),
+                     "deep.curves.json:1: JSON nested deeper than 64 levels");
+  const std::string deepest = std::string(kMaxJsonDepth, '[') + std::string(kMaxJsonDepth, ']');
+  EXPECT_MESSAGE_HAS(test::error_message_of([&] { parse_anchors_json(deepest, "ok.json"); }),
+                     "ok.json:1: expected a JSON object");
 }
 
 }  // namespace
