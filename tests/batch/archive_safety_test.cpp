@@ -27,7 +27,7 @@ using test::quoted;
 std::vector<std::string> spot_arguments(const path& targets) {
   return {"--template",  test::data_path("spot_low_resolution.obj").string(),
           "--template-anchors", test::data_path("spot_low_resolution.anchors.json").string(),
-          "--targets", targets.string(), "--no-optimize-map", "-j", "1"};
+          "--targets", targets.string(), "--no-optimize-map", "--no-extremity-anchors", "-j", "1"};
 }
 
 std::string spot_command(const path& targets) {

@@ -23,9 +23,10 @@ std::string template_options() {
          quoted(test::data_path("human_man.curves.json"));
 }
 
-// The map without its optimization on the target, for the tests of exit codes and the archive's
-// bookkeeping: a few times faster, and what they check does not depend on the map.
-const char* const kQuick = " --no-optimize-map";
+// The map without its optimization on the target nor the map through protrusion tips, for the
+// tests of exit codes and the archive's bookkeeping: a few times faster, and what they check does
+// not depend on the map.
+const char* const kQuick = " --no-optimize-map --no-extremity-anchors";
 
 // `xparam batch ARGS` with stdout and stderr sent to files in `dir`; returns the exit status.
 int batch(const path& dir, const std::string& arguments) {
@@ -162,7 +163,7 @@ TEST(BatchCommand, KilledRunResumesToTheDatasetsOfAnUninterruptedRun) {
                                    test::data_path("human.anchors.json").string(), "--curves",
                                    test::data_path("human_man.curves.json").string(), "--targets",
                                    (dir / "targets").string(), "-j", "1", "--checkpoint-seconds", "0",
-                                   "--no-optimize-map", "--out", archive.string()},
+                                   "--no-optimize-map", "--no-extremity-anchors", "--out", archive.string()},
                                   dir / "killed.log");
   ASSERT_GT(child, 0);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
@@ -211,7 +212,7 @@ TEST(BatchCommand, ParallelAndSlurmScriptsMergeIntoOneRunsDatasets) {
                                 " XPARAM_CURVES=" + quoted(test::data_path("human_man.curves.json")) +
                                 " XPARAM_TARGETS=" + quoted(dir / "targets") + " XPARAM_OUT=" +
                                 quoted(dir / "slurm.h5") + " XPARAM_SHARDS=2 SLURM_CPUS_PER_TASK=1 XPARAM_OPTIONS=" +
-                                "--no-optimize-map ";
+                                "'--no-optimize-map --no-extremity-anchors' ";
   for (int task = 0; task < 2; ++task)
     EXPECT_EQ(test::run_status(slurm_env + "SLURM_ARRAY_TASK_ID=" + std::to_string(task) + " SLURM_ARRAY_TASK_COUNT=2 " +
                                script("slurm_batch.sh") + " 2> " + quoted(dir / "slurm.log")),

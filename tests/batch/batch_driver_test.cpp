@@ -22,11 +22,13 @@ const PreparedTemplate& man() {
   return prepared;
 }
 
-// The map without its optimization on the target, for the tests of the archive's bookkeeping
-// (resume, shards): it is a few times faster, and what they check does not depend on the map.
+// The map without its optimization on the target nor the map through protrusion tips, for the
+// tests of the archive's bookkeeping (resume, shards): a few times faster, and what they check
+// does not depend on the map.
 PairSettings quick() {
   PairSettings settings;
   settings.optimize_map = false;
+  settings.extremity_anchors = false;
   return settings;
 }
 
