@@ -22,6 +22,10 @@
 /// which the map never folds again (the barrier) and the energy never rises. Folds the anchors
 /// force (a misplaced landmark) stay; the barrier phase optimizes the rest around them.
 ///
+/// The barrier phase adds a coverage term (MapOptimizationSettings::coverage_weight): chord
+/// triangles cannot see a target finger the remesh cuts off, so every target vertex left farther
+/// than a margin from the remesh pulls its nearest remesh point (map/remesh_coverage.h).
+///
 /// Block coordinate descent: one vertex at a time, its neighbours held, a Newton step in the
 /// plane of the target face under its image (finite-difference Hessian of the analytic gradient,
 /// made positive definite), walked along the target surface (core/surface_walk.h), with a
