@@ -155,6 +155,7 @@ TEST(TargetJob, ReleasedAnchorIsRecordedWithItsMissDistance) {
   releasing.max_released_anchors = 2;
   releasing.tip_anchors = false;  // what the archive records of releases, not of helpers behind tips
   releasing.optimize_map = false;  // nor of the optimized map
+  releasing.extremity_anchors = false;  // nor of the tip anchors
   const TargetRecord record = run_target(man(), discover_targets(dir).at(0), releasing);
   ASSERT_TRUE(record.ok) << record.error;
 
