@@ -389,12 +389,9 @@ class MapOptimizer {
 
   // Each target vertex's share of the target's area, and the coverage margin.
   void measure_target_areas() {
-    target_vertex_share_.assign(target_.n_vertices(), 0.0);
     const double area = reference_.target_area();
-    for (FaceHandle f : target_.faces()) {
-      const double share = target_.calc_face_area(f) / (3.0 * area);
-      for (VertexHandle v : target_.fv_range(f)) target_vertex_share_[v.idx()] += share;
-    }
+    target_vertex_share_ = vertex_areas(target_);
+    for (double& share : target_vertex_share_) share /= area;
     coverage_margin_ = 0.5 * kUncoveredGap * std::sqrt(area);
   }
 

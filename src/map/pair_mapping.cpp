@@ -406,15 +406,21 @@ AnchorSet without_anchor(const AnchorSet& set, const std::string& name) {
 
 double area_error(const PairMapping& mapping) { return std::abs(mapping.quality.area_ratio - 1.0); }
 
+// Whether `other` collapses no more template faces than `current` and covers the target's area
+// to 2% or no worse: what a map made on other anchors must keep to replace the current one.
+bool keeps_faces_and_area(const PairMapping& other, const PairMapping& current) {
+  constexpr double kAreaTolerance = 0.02;
+  return other.distortion.degenerate_faces <= current.distortion.degenerate_faces &&
+         area_error(other) <= std::max(kAreaTolerance, area_error(current));
+}
+
 // Whether a map on other anchors (helpers added, or one more released) replaces the current
 // one: it folds less, collapses no more template faces, and covers the target's area to 2% or
 // no worse than the current map (a map that folds less by collapsing faces or by leaving part
 // of the target uncovered is not better).
 bool folds_less(const PairMapping& other, const PairMapping& current) {
-  constexpr double kAreaTolerance = 0.02;
   return other.quality.flipped_faces.size() < current.quality.flipped_faces.size() &&
-         other.distortion.degenerate_faces <= current.distortion.degenerate_faces &&
-         area_error(other) <= std::max(kAreaTolerance, area_error(current));
+         keeps_faces_and_area(other, current);
 }
 
 // map_through_anchors, or nothing when those anchors cannot be laid out or parameterized.
@@ -513,12 +519,10 @@ constexpr double kTipSlack = 0.5;
 // folding no more by either count, collapsing no more faces, covering the target's area to 2%
 // or no worse.
 bool better_with_tips(const PairMapping& other, const PairMapping& current) {
-  constexpr double kAreaTolerance = 0.02;
   return other.distortion.all.e_l2 < current.distortion.all.e_l2 &&
          other.quality.flipped_faces.size() <= current.quality.flipped_faces.size() &&
          other.quality.strictly_folded_faces <= current.quality.strictly_folded_faces &&
-         other.distortion.degenerate_faces <= current.distortion.degenerate_faces &&
-         area_error(other) <= std::max(kAreaTolerance, area_error(current));
+         keeps_faces_and_area(other, current);
 }
 
 // A map through `current`'s anchors plus helper anchors at the tips of unanchored protrusions

@@ -9,6 +9,15 @@
 
 namespace xparam {
 
+std::vector<double> vertex_areas(const Mesh& mesh) {
+  std::vector<double> areas(mesh.n_vertices(), 0.0);
+  for (FaceHandle f : mesh.faces()) {
+    const double third = mesh.calc_face_area(f) / 3.0;
+    for (VertexHandle v : mesh.fv_range(f)) areas[v.idx()] += third;
+  }
+  return areas;
+}
+
 RemeshCoverage measure_remesh_coverage(const Mesh& target, const std::vector<Eigen::Vector3d>& positions,
                                        const std::vector<std::array<int, 3>>& faces) {
   const ClosestPointIndex remesh(positions, faces);
@@ -18,13 +27,8 @@ RemeshCoverage measure_remesh_coverage(const Mesh& target, const std::vector<Eig
   tbb::parallel_for(0, n_vertices, [&](int v) {
     coverage.gap[v] = remesh.closest(position(target, target.vertex_handle(v))).distance;
   });
-  std::vector<double> vertex_area(n_vertices, 0.0);
-  double area = 0.0;
-  for (FaceHandle f : target.faces()) {
-    const double face_area = target.calc_face_area(f);
-    area += face_area;
-    for (VertexHandle v : target.fv_range(f)) vertex_area[v.idx()] += face_area / 3.0;
-  }
+  const std::vector<double> vertex_area = vertex_areas(target);
+  const double area = surface_area(target);
   const double scale = std::sqrt(area);
   double uncovered = 0.0;
   for (int v = 0; v < n_vertices; ++v) {

@@ -29,6 +29,9 @@ struct RemeshCoverage {
   int uncovered_vertices = 0;   ///< target vertices farther than that
 };
 
+/// Each vertex's area: a third of the area of each face round it (they sum to the mesh's area).
+std::vector<double> vertex_areas(const Mesh& mesh);
+
 /// The distance of every target vertex to the remesh whose vertex i lies at positions[i], faces
 /// `faces` (template vertex ids). \pre positions and faces non-empty, indices valid
 RemeshCoverage measure_remesh_coverage(const Mesh& target, const std::vector<Eigen::Vector3d>& positions,
