@@ -18,22 +18,27 @@ function(xparam_stage name dir)
   target_link_libraries(${name} PUBLIC ${ARG_DEPENDS} PRIVATE xparam_compile_options)
 endfunction()
 
-# GoogleTest executables of a test folder: `name` from every *_test.cpp in it, and
-# `name`_real_data from its *_real_data_test.cpp files (long cases on ../shared/data), whose
-# tests carry the ctest label `real_data` (the others `fast`) so a pass can leave them out
-# (`ctest -LE real_data`).
+# GoogleTest executables of a test folder, one per label: `name` from its *_test.cpp files (label
+# `fast`), `name`_slow from its *_slow_test.cpp files (label `slow`: long on the bundled data, e.g.
+# a whole pair mapped twice to compare thread counts), and `name`_real_data from its
+# *_real_data_test.cpp files (label `real_data`: long cases on ../shared/data). A pass leaves
+# labels out with `ctest -LE`: the sanitizer pass runs only `fast`.
 function(xparam_test_folder name dir)
   cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${dir}/*_test.cpp)
-  set(real_data_sources ${sources})
-  list(FILTER sources EXCLUDE REGEX "_real_data_test\\.cpp$")
-  list(FILTER real_data_sources INCLUDE REGEX "_real_data_test\\.cpp$")
+  foreach(label slow real_data)
+    set(${label}_sources ${sources})
+    list(FILTER ${label}_sources INCLUDE REGEX "_${label}_test\\.cpp$")
+    list(FILTER sources EXCLUDE REGEX "_${label}_test\\.cpp$")
+  endforeach()
   if(sources)
     xparam_test_executable(${name} fast ${sources} DEPENDS ${ARG_DEPENDS})
   endif()
-  if(real_data_sources)
-    xparam_test_executable(${name}_real_data real_data ${real_data_sources} DEPENDS ${ARG_DEPENDS})
-  endif()
+  foreach(label slow real_data)
+    if(${label}_sources)
+      xparam_test_executable(${name}_${label} ${label} ${${label}_sources} DEPENDS ${ARG_DEPENDS})
+    endif()
+  endforeach()
 endfunction()
 
 function(xparam_test_executable name label)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Set up (packages, configure, build) and run every test. Usage: scripts/test.sh [BUILD_DIR] [extra cmake args...]
-# XPARAM_TEST_LABELS_EXCLUDED=real_data leaves out the long cases on ../shared/data (ctest -LE).
+# XPARAM_TEST_LABELS_EXCLUDED='slow|real_data' leaves out the long cases on the bundled data and on
+# ../shared/data (a ctest -LE regular expression).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${1:-$root/build}
