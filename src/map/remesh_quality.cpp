@@ -77,6 +77,17 @@ bool lies_on(const Mesh& target, const VertexHandle (&carriers)[3], int n_carrie
 // optimization tries.
 int common_face(const Mesh& target, const std::array<const SurfacePoint*, 3>& corners) {
   constexpr double kOnBoundary = 1e-9;
+  // Most corner triples lie inside faces (carried by all three corners of their own face): then
+  // the answer is at hand without circulating the target's faces.
+  const auto inside = [&](int i) {
+    return corners[i]->bary.minCoeff() > kOnBoundary && corners[i]->bary.maxCoeff() < 1.0 - kOnBoundary;
+  };
+  const bool inside_0 = inside(0), inside_1 = inside(1), inside_2 = inside(2);
+  if ((inside_0 && inside_1 && corners[0]->face != corners[1]->face) ||
+      (inside_0 && inside_2 && corners[0]->face != corners[2]->face) ||
+      (inside_1 && inside_2 && corners[1]->face != corners[2]->face))
+    return -1;
+  if (inside_0 && inside_1 && inside_2) return corners[0]->face;
   VertexHandle carriers[3][3];
   int n[3];
   for (int i = 0; i < 3; ++i) n[i] = carrying_corners(target, *corners[i], kOnBoundary, carriers[i]);

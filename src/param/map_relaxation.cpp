@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace xparam {
 namespace {
@@ -236,10 +237,17 @@ class Relaxation {
     const size_t n_faces = source_.triangles.size();
     std::vector<Matrix2> sum(n_faces, Matrix2::Zero());
     std::vector<double> covered(n_faces, 0.0);
-    const PointLocator images(uv, source_.triangles);
+    // The images move little between calls (line-search steps), so the triangle that held a
+    // centroid last time is tried first; the grid is built only when one moved out of it.
+    std::optional<PointLocator> images;
+    holder_.resize(metrics_.metric.size(), -1);
     for (size_t t = 0; t < metrics_.metric.size(); ++t) {
       if (metrics_.uv_area[t] <= 0.0) continue;
-      const int f = images.locate(metrics_.centroid[t]).triangle;
+      int& f = holder_[t];
+      if (f < 0 || !strictly_inside(metrics_.centroid[t], uv, source_.triangles[f])) {
+        if (!images) images.emplace(uv, source_.triangles);
+        f = images->locate(metrics_.centroid[t]).triangle;
+      }
       sum[f] += metrics_.uv_area[t] * metrics_.metric[t];
       covered[f] += metrics_.uv_area[t];
     }
@@ -256,6 +264,16 @@ class Relaxation {
       averaged[f] = sum[f] / covered[f];
     }
     return averaged;
+  }
+
+  // Whether p lies inside the image of `triangle` and on none of its sides: then, the images being
+  // an embedding, no other image triangle holds it.
+  static bool strictly_inside(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& uv,
+                              const std::array<int, 3>& triangle) {
+    const Eigen::Vector2d &a = uv[triangle[0]], &b = uv[triangle[1]], &c = uv[triangle[2]];
+    const double sign = signed_area2(a, b, c) > 0.0 ? 1.0 : -1.0;  // either orientation
+    return sign * signed_area2(p, b, c) > 0.0 && sign * signed_area2(a, p, c) > 0.0 &&
+           sign * signed_area2(a, b, p) > 0.0;
   }
 
   // Upper-triangular R with R^T R = G; G is nudged to definite when a degenerate target
@@ -278,6 +296,9 @@ class Relaxation {
   std::vector<int> free_index_;  // #V: unknown index of a free vertex, -1 on the boundary
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;  // of the SLIM proxy
   bool pattern_analyzed_ = false;
+  // Per target parameter triangle: the image triangle that held its centroid at the last
+  // averaged_metrics call (-1: none yet); a cache, hence mutable.
+  mutable std::vector<int> holder_;
   int free_count_ = 0;
 };
 
