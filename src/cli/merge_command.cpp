@@ -46,6 +46,7 @@ void add_merge_command(CLI::App& app) {
   command->add_option("shards", options->shards, "Shard archives (.h5)")->required()->check(CLI::ExistingFile);
   command->add_option("--out", options->out, "Merged archive to write")->required();
   command->add_flag("--force", options->force, "Replace --out when it exists");
+  command->footer("Example: xparam merge shard_0.h5 shard_1.h5 shard_2.h5 --out all.h5");
   command->callback([options] { run_merge(*options); });
 }
 
