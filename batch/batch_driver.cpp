@@ -24,21 +24,28 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-TargetOutcome outcome_of(const TargetRecord& record) {
+// The fields a TargetRecord and an archive row (ArchiveTargetSummary) have alike.
+template <typename Row>
+TargetOutcome outcome_from(const Row& row) {
   TargetOutcome outcome;
-  outcome.name = record.name;
-  outcome.ok = record.ok;
-  outcome.suspect = record.suspect;
-  outcome.error = record.error;
-  outcome.diagnosis = record.diagnosis;
+  outcome.name = row.name;
+  outcome.ok = row.ok;
+  outcome.suspect = row.suspect;
+  outcome.error = row.error;
+  outcome.diagnosis = row.diagnosis;
+  outcome.mesh_file = row.mesh_file;
+  outcome.anchors_file = row.anchors_file;
+  outcome.mesh_sha256 = row.mesh_sha256;
+  outcome.anchors_sha256 = row.anchors_sha256;
+  outcome.metrics = row.metrics;
+  outcome.stage_seconds = row.seconds;
+  return outcome;
+}
+
+TargetOutcome outcome_of(const TargetRecord& record) {
+  TargetOutcome outcome = outcome_from(record);
   outcome.ran = true;
-  outcome.mesh_file = record.mesh_file;
-  outcome.anchors_file = record.anchors_file;
-  outcome.mesh_sha256 = record.mesh_sha256;
-  outcome.anchors_sha256 = record.anchors_sha256;
-  outcome.metrics = record.metrics;
   outcome.seconds = record.seconds.back();  // the "total" column
-  outcome.stage_seconds = record.seconds;
   return outcome;
 }
 
@@ -132,21 +139,7 @@ class Committer {
 
 }  // namespace
 
-TargetOutcome outcome_of(const ArchiveTargetSummary& row) {
-  TargetOutcome outcome;
-  outcome.name = row.name;
-  outcome.ok = row.ok;
-  outcome.suspect = row.suspect;
-  outcome.error = row.error;
-  outcome.diagnosis = row.diagnosis;
-  outcome.mesh_file = row.mesh_file;
-  outcome.anchors_file = row.anchors_file;
-  outcome.mesh_sha256 = row.mesh_sha256;
-  outcome.anchors_sha256 = row.anchors_sha256;
-  outcome.metrics = row.metrics;
-  outcome.stage_seconds = row.seconds;
-  return outcome;
-}
+TargetOutcome outcome_of(const ArchiveTargetSummary& row) { return outcome_from(row); }
 
 double BatchSummary::targets_per_second() const {
   return ran > 0 && seconds > 0.0 ? static_cast<double>(ran) / seconds : 0.0;

@@ -27,7 +27,7 @@ struct QualityLimits {
   /// may have. Default 0: a fold by that count is one the map optimization could not remove.
   int max_folds = 0;
   /// Largest global L2 stretch E_L2 (paper eq. 6; 1 for an isometry up to scale). Default 10:
-  /// the maps of the README's evaluation are 1.0–6.5; a landmark set that disagrees with the
+  /// most maps of docs/evaluation.md are 1–7; a landmark set that disagrees with the
   /// surface gives tens to thousands.
   double max_e_l2 = 10.0;
   /// Largest |area ratio − 1| (remesh area / target area). Default 0.05: a lost finger or

@@ -128,7 +128,7 @@ void print_effective_options(const BatchOptions& options, std::ostream& out) {
   out << "options: " << batch_options_json(options.map, options.limits) << "\n"
       << "run: -j " << options.threads << ", shard " << options.shard
       << (options.fail_on_suspect ? ", --fail-on-suspect" : "") << "\n"
-      << "anchors: "
+      << "anchor files: "
       << (options.anchors.is_default()
               ? std::string("beside each mesh as NAME.anchors.json, NAME.anchors.txt or NAME.pp")
               : "in " + (options.anchors.folder.empty() ? options.targets : options.anchors.folder.string()) + " as " +

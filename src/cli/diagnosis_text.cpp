@@ -2,6 +2,7 @@
 
 #include "cli/text_format.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace xparam::cli {
@@ -39,11 +40,21 @@ void print_diagnosis(const nlohmann::ordered_json& diagnosis, std::ostream& out)
       out << " \"" << f["anchor"].get<std::string>() << "\" " << f["folded_faces"].get<int>();
     out << "\n";
   }
-  for (const auto& c : list(diagnosis, "disagreeing_corners"))
+  // As `xparam pair`: the disagreeing corners that explain folds, at anchors with folds near them.
+  std::size_t unexplaining = 0;
+  for (const auto& c : list(diagnosis, "disagreeing_corners")) {
+    const auto has_folds = std::any_of(folds.begin(), folds.end(), [&](const auto& f) { return f["anchor"] == c["anchor"]; });
+    if (!has_folds) {
+      ++unexplaining;
+      continue;
+    }
     out << "  corners at \"" << c["anchor"].get<std::string>() << "\" disagree: " << degree_list(c["template_degrees"])
         << " degrees on the template, " << degree_list(c["target_degrees"])
         << " on the target (a different patch wraps round it on each mesh); moving or releasing that landmark "
            "may help\n";
+  }
+  if (unexplaining > 0)
+    out << "  (" << plural(unexplaining, "more anchor") << " with disagreeing corners but no fold nearby: --json)\n";
   for (const auto& pair : list(diagnosis, "swapped_anchors"))
     out << "  landmarks \"" << pair[0].get<std::string>() << "\" and \"" << pair[1].get<std::string>()
         << "\" look swapped on the target: check its landmark file\n";

@@ -83,7 +83,8 @@ TEST(BatchOwnData, AnchorsPatternAndCommonAnchorsOnAFaustLikeFolder) {
   // The effective options, as the run would record them, and where the anchors come from.
   EXPECT_NE(report.find("options: {\"placement\""), std::string::npos) << report;
   EXPECT_NE(report.find("\"max_e_l2\":10.0"), std::string::npos) << report;
-  EXPECT_NE(report.find("as {stem}_landmarks.json"), std::string::npos) << report;
+  EXPECT_NE(report.find("anchor files: in " + (dir / "landmarks").string() + " as {stem}_landmarks.json"), std::string::npos)
+      << report;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
 
   // The run: one scan (shard 0 of 2), mapped through the 40 shared anchors.

@@ -185,7 +185,7 @@ TEST(InspectCommand, JsonCarriesTheExactValues) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["options"]["metric"], "SDL");
-  EXPECT_EQ(j["ok"], 2);
+  EXPECT_EQ(j["succeeded"], 3);
   EXPECT_EQ(j["suspect"], 1);
   EXPECT_EQ(j["failed"], 1);
   EXPECT_EQ(j["targets"][3]["status"], "suspect");
