@@ -175,9 +175,10 @@ void refuse_to_replace(const BatchOptions& options) {
 }
 
 void print_interrupted(const BatchSummary& summary) {
-  std::cerr << "xparam batch: interrupted: " << summary.ran << " targets ran and are committed, " << summary.not_run
-            << " did not start; archive " << summary.archive.string() << " holds " << summary.archive_targets
-            << " targets. Run the same command with --resume to continue.\n";
+  std::cerr << "xparam batch: interrupted: " << plural(summary.ran, "target") << " ran and "
+            << (summary.ran == 1 ? "is" : "are") << " committed, " << summary.not_run << " did not start; archive "
+            << summary.archive.string() << " holds " << plural(summary.archive_targets, "target")
+            << ". Run the same command with --resume to continue.\n";
 }
 
 int run_command(const BatchOptions& options) {

@@ -116,7 +116,7 @@ std::string BatchProgressView::overall_line_locked() const {
     line << "  " << seconds_text(per_target) << " per target, ETA "
          << seconds_text(per_target * static_cast<double>(total_ - last_.done));
   } else {
-    line << "  ETA after the first target";
+    line << "  ETA --";  // known once a target has finished
   }
   return line.str();
 }

@@ -1,5 +1,6 @@
 // `xparam merge SHARD.h5... --out ARCHIVE.h5`: combine shard archives into one.
 #include "cli/commands.h"
+#include "cli/text_format.h"
 
 #include "core/errors.h"
 #include "io/archive_lock.h"
@@ -32,8 +33,8 @@ void run_merge(const MergeOptions& options) {
     throw CLI::RuntimeError(kExitUsage);
   }
   merge_archives({options.shards.begin(), options.shards.end()}, options.out);
-  std::cout << "merged " << ArchiveReader(options.out).targets().size() << " targets from " << options.shards.size()
-            << " shards into " << options.out << "\n";
+  std::cout << "merged " << plural(ArchiveReader(options.out).targets().size(), "target") << " from "
+            << plural(options.shards.size(), "shard") << " into " << options.out << "\n";
 }
 
 }  // namespace
