@@ -24,23 +24,28 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-TargetOutcome outcome_of(const TargetRecord& record) {
+// The fields a TargetRecord and an archive row (ArchiveTargetSummary) have alike.
+template <typename Row>
+TargetOutcome outcome_from(const Row& row) {
   TargetOutcome outcome;
-  outcome.name = record.name;
-  outcome.ok = record.ok;
-  outcome.error = record.error;
-  outcome.ran = true;
-  outcome.metrics = record.metrics;
-  outcome.seconds = record.seconds.back();  // the "total" column
+  outcome.name = row.name;
+  outcome.ok = row.ok;
+  outcome.suspect = row.suspect;
+  outcome.error = row.error;
+  outcome.diagnosis = row.diagnosis;
+  outcome.mesh_file = row.mesh_file;
+  outcome.anchors_file = row.anchors_file;
+  outcome.mesh_sha256 = row.mesh_sha256;
+  outcome.anchors_sha256 = row.anchors_sha256;
+  outcome.metrics = row.metrics;
+  outcome.stage_seconds = row.seconds;
   return outcome;
 }
 
-TargetOutcome outcome_of(const ArchiveTargetSummary& kept) {
-  TargetOutcome outcome;
-  outcome.name = kept.name;
-  outcome.ok = kept.ok;
-  outcome.error = kept.error;
-  outcome.metrics = kept.metrics;
+TargetOutcome outcome_of(const TargetRecord& record) {
+  TargetOutcome outcome = outcome_from(record);
+  outcome.ran = true;
+  outcome.seconds = record.seconds.back();  // the "total" column
   return outcome;
 }
 
@@ -100,6 +105,7 @@ class Committer {
     }
     ++state_.done;
     if (!slot.ok) ++state_.failed;
+    if (slot.suspect) ++state_.suspect;
     state_.elapsed_seconds = seconds_since(start_);
     state_.last = &slot;
     if (progress_) progress_(state_);
@@ -133,11 +139,13 @@ class Committer {
 
 }  // namespace
 
+TargetOutcome outcome_of(const ArchiveTargetSummary& row) { return outcome_from(row); }
+
 double BatchSummary::targets_per_second() const {
   return ran > 0 && seconds > 0.0 ? static_cast<double>(ran) / seconds : 0.0;
 }
 
-std::string batch_options_json(const PairSettings& settings) {
+std::string batch_options_json(const PairSettings& settings, const QualityLimits& limits) {
   nlohmann::ordered_json options;
   options["placement"]["snap_tolerance"] = settings.placement.snap_tolerance;
   options["placement"]["warn_snap_distance"] = settings.placement.warn_snap_distance;
@@ -158,13 +166,14 @@ std::string batch_options_json(const PairSettings& settings) {
   options["map_coverage"] = settings.map_optimization.coverage_weight;
   options["anchor_slack"] = settings.anchor_slack;
   options["max_maps"] = settings.max_maps;
+  options["quality"] = limits_json(limits);
   return options.dump();
 }
 
 BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchSettings& settings,
-                       const BatchProgressCallback& progress) {
+                       const BatchProgressCallback& progress, const TargetStageCallback& on_stage) {
   const Clock::time_point start = Clock::now();
-  const ArchiveProvenance provenance = current_provenance(batch_options_json(settings.pair));
+  const ArchiveProvenance provenance = current_provenance(batch_options_json(settings.pair, settings.limits));
   BatchArchive archive =
       settings.resume
           ? BatchArchive::resume(settings.archive, prepared.record, provenance, settings.archive_settings)
@@ -194,7 +203,10 @@ BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, 
   run_parallel(settings.threads, to_run.size(), [&](std::size_t k) {
     if (committer.stopping()) return;
     const std::size_t i = to_run[k];
-    const TargetRecord record = run_target(prepared, plan.targets[i].spec, settings.pair);
+    const TargetSpec& spec = plan.targets[i].spec;
+    StageCallback stage;
+    if (on_stage) stage = [&](const std::string& name) { on_stage(spec.name, name); };
+    const TargetRecord record = run_target(prepared, spec, settings.pair, settings.limits, stage);
     committer.commit(record, summary.targets[i]);
   });
   summary.interrupted = committer.interrupted();
@@ -207,7 +219,10 @@ BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, 
 
   archive.finish(!settings.keep_parts);
   summary.archive_targets = archive.committed().size();
-  for (const TargetOutcome& outcome : summary.targets) ++(outcome.ok ? summary.succeeded : summary.failed);
+  for (const TargetOutcome& outcome : summary.targets) {
+    ++(outcome.ok ? summary.succeeded : summary.failed);
+    if (outcome.suspect) ++summary.suspect;
+  }
   summary.seconds = seconds_since(start);
   return summary;
 }

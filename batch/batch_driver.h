@@ -11,7 +11,9 @@
 /// serialized by one lock: a single writer for the archive.
 
 #include "batch/batch_plan.h"
+#include "batch/target_verdict.h"
 #include "batch/template_preparation.h"
+#include "io/archive_reader.h"
 #include "io/archive_records.h"
 #include "io/archive_writer.h"
 #include "map/pair_mapping.h"
@@ -39,6 +41,7 @@ struct BatchSettings {
   /// Keep ARCHIVE.h5.parts after the final assembly (resume works either way).
   bool keep_parts = false;
   PairSettings pair;                       ///< the per-target pipeline's options
+  QualityLimits limits;                    ///< past which a finished map is `suspect`
   ArchiveWriteSettings archive_settings;   ///< compression, XDMF sidecar
   /// When set and it becomes true (a signal handler sets it), no further target starts: the
   /// targets in flight finish and are committed, the archive is assembled, and the summary
@@ -49,24 +52,39 @@ struct BatchSettings {
 /// What became of one target of the plan.
 struct TargetOutcome {
   std::string name;
-  bool ok = false;
+  bool ok = false;         ///< the pipeline finished (the verdict is ok or suspect)
+  bool suspect = false;    ///< ok, but a quality limit failed (see diagnosis)
   std::string error;       ///< why it failed; empty when ok
+  std::string diagnosis;   ///< the diagnosis JSON (batch/target_verdict.h); empty when failed
   bool ran = false;        ///< false: kept from an earlier run of the archive (resume)
+  std::string mesh_file;       ///< its mesh file (as given)
+  std::string anchors_file;    ///< its anchor file
+  std::string mesh_sha256;     ///< SHA-256 of the mesh file, empty when unreadable
+  std::string anchors_sha256;  ///< SHA-256 of the anchor file, empty when unreadable
   TargetMetrics metrics;   ///< the metrics row
   double seconds = TargetMetrics::kNaN;  ///< wall-clock seconds of its job (total column); NaN when not run now
+  StageSeconds stage_seconds = TargetRecord::filled_seconds();  ///< the timings row (NaN where a stage did not run)
 };
+
+/// The outcome an archive row records (`ran` false; seconds NaN, its stage seconds kept).
+TargetOutcome outcome_of(const ArchiveTargetSummary& row);
 
 /// Progress after each finished target (called under the driver's lock, so calls never overlap).
 struct BatchProgress {
   std::size_t done = 0;        ///< targets finished in this run so far
   std::size_t total = 0;       ///< targets this run executes (the plan's Run actions)
   std::size_t failed = 0;      ///< of `done`, how many failed
+  std::size_t suspect = 0;     ///< of `done`, how many are suspect
   double elapsed_seconds = 0;  ///< since the first target started
   const TargetOutcome* last = nullptr;  ///< the target that just finished
 };
 
 /// Receives progress; must not throw.
 using BatchProgressCallback = std::function<void(const BatchProgress&)>;
+
+/// Hears each stage of a running target as it starts (`target` the target's name; the first
+/// stage is "load"). Called from the worker threads, so calls may overlap; must not throw.
+using TargetStageCallback = std::function<void(const std::string& target, const std::string& stage)>;
 
 /// The result of a run.
 struct BatchSummary {
@@ -76,7 +94,8 @@ struct BatchSummary {
   std::size_t discovered = 0;         ///< targets in the whole source
   std::size_t ran = 0;                ///< targets executed by this run
   std::size_t kept = 0;               ///< targets kept from an earlier run
-  std::size_t succeeded = 0;          ///< of the shard's targets (run or kept), how many are ok
+  std::size_t succeeded = 0;          ///< of the shard's targets (run or kept), how many are ok (suspect included)
+  std::size_t suspect = 0;            ///< of `succeeded`, how many are suspect
   std::size_t failed = 0;             ///< of the shard's targets (run or kept), how many failed
   std::size_t archive_targets = 0;    ///< rows of the final archive (other shards' kept rows included)
   bool interrupted = false;           ///< settings.stop was raised during the run
@@ -91,8 +110,9 @@ struct BatchSummary {
 };
 
 /// The method options recorded in the archive's provenance (a resumed run must use the same):
-/// the PairSettings fields as a JSON object. Thread count and sharding are not in it.
-std::string batch_options_json(const PairSettings& settings);
+/// the PairSettings fields and the quality limits (key "quality") as a JSON object. Thread count
+/// and sharding are not in it.
+std::string batch_options_json(const PairSettings& settings, const QualityLimits& limits = {});
 
 /// Run `plan` against `prepared`: create (or, with settings.resume, continue) the archive,
 /// run every target whose action is Run, commit each as it finishes, checkpoint, and assemble
@@ -102,7 +122,7 @@ std::string batch_options_json(const PairSettings& settings);
 ///   or options: fatal, no further target starts, the targets committed before stay for a later
 ///   --resume and the failing one leaves nothing. Target failures never throw: they are outcomes.
 BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchSettings& settings,
-                       const BatchProgressCallback& progress = {});
+                       const BatchProgressCallback& progress = {}, const TargetStageCallback& on_stage = {});
 
 /// What --dry-run does: check_target (batch/target_job.h) on every target the plan would run,
 /// in parallel on `threads` workers, without writing anything. Outcomes by name; `ran` false.

@@ -17,29 +17,46 @@ nlohmann::ordered_json count_or_null(int value) {
   return value >= 0 ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
 }
 
-nlohmann::ordered_json target_json(const TargetOutcome& outcome) {
+// The verdict's reasons out of the diagnosis JSON (empty for a failed target).
+nlohmann::ordered_json reasons_of(const TargetOutcome& outcome) {
+  if (outcome.diagnosis.empty()) return nlohmann::ordered_json::array();
+  const nlohmann::ordered_json diagnosis = nlohmann::ordered_json::parse(outcome.diagnosis, nullptr, false);
+  if (diagnosis.is_discarded() || !diagnosis.contains("reasons")) return nlohmann::ordered_json::array();
+  return diagnosis["reasons"];
+}
+
+}  // namespace
+
+nlohmann::ordered_json target_json(const TargetOutcome& outcome, bool with_ran) {
   nlohmann::ordered_json target;
   target["name"] = outcome.name;
-  target["status"] = outcome.ok ? "ok" : "failed";
+  target["status"] = !outcome.ok ? "failed" : outcome.suspect ? "suspect" : "ok";
   target["error"] = outcome.error;
-  target["ran"] = outcome.ran;
-  target["seconds"] = number_or_null(outcome.seconds);
+  target["reasons"] = reasons_of(outcome);
+  if (with_ran) target["ran"] = outcome.ran;
+  target["mesh_file"] = outcome.mesh_file;
+  target["anchors_file"] = outcome.anchors_file;
+  target["mesh_sha256"] = outcome.mesh_sha256;
+  target["anchors_sha256"] = outcome.anchors_sha256;
+  // Column names of /targets/metrics (io/archive_layout.cpp).
   const TargetMetrics& m = outcome.metrics;
   nlohmann::ordered_json metrics;
-  metrics["e_l2"] = number_or_null(m.e_l2);
-  metrics["e_ang"] = number_or_null(m.e_ang);
+  metrics["E_L2"] = number_or_null(m.e_l2);
+  metrics["E_ang"] = number_or_null(m.e_ang);
   metrics["stretch_max_sv"] = number_or_null(m.stretch_max_sv);
   metrics["flipped_faces"] = count_or_null(m.flipped_faces);
+  metrics["strictly_folded_faces"] = count_or_null(m.strictly_folded_faces);
   metrics["area_ratio"] = number_or_null(m.area_ratio);
   metrics["gt_error"] = number_or_null(m.gt_error);
   metrics["swaps"] = count_or_null(m.swaps);
   metrics["merges"] = count_or_null(m.merges);
   metrics["released_anchors"] = count_or_null(m.released_anchors);
   target["metrics"] = metrics;
+  nlohmann::ordered_json seconds;
+  for (std::size_t s = 0; s < kTimingStages.size(); ++s) seconds[kTimingStages[s]] = number_or_null(outcome.stage_seconds[s]);
+  target["seconds"] = seconds;
   return target;
 }
-
-}  // namespace
 
 nlohmann::ordered_json summary_json(const BatchSummary& summary) {
   nlohmann::ordered_json json;
@@ -53,6 +70,7 @@ nlohmann::ordered_json summary_json(const BatchSummary& summary) {
   json["ran"] = summary.ran;
   json["kept"] = summary.kept;
   json["succeeded"] = summary.succeeded;
+  json["suspect"] = summary.suspect;
   json["failed"] = summary.failed;
   json["archive_targets"] = summary.archive_targets;
   json["interrupted"] = summary.interrupted;
@@ -60,7 +78,7 @@ nlohmann::ordered_json summary_json(const BatchSummary& summary) {
   json["seconds"] = summary.seconds;
   json["targets_per_second"] = summary.targets_per_second();
   nlohmann::ordered_json targets = nlohmann::ordered_json::array();
-  for (const TargetOutcome& outcome : summary.targets) targets.push_back(target_json(outcome));
+  for (const TargetOutcome& outcome : summary.targets) targets.push_back(target_json(outcome, true));
   json["targets"] = targets;
   return json;
 }

@@ -1,7 +1,9 @@
 #pragma once
 /// \file
-/// The `--summary` file of a batch run (schemas/summary.schema.json): counts, throughput and
-/// one entry per target of the shard, for scripts that decide what to do next.
+/// The JSON a person's scripts read: the `--summary` file of a batch run
+/// (schemas/summary.schema.json) and one object per target, the same in the summary and in
+/// `xparam inspect --json` (schemas/target.schema.json): its keys are the archive's own
+/// column names (schemas/archive.md), so a script reads E_L2 under one name everywhere.
 
 #include "batch/batch_driver.h"
 
@@ -11,8 +13,13 @@
 
 namespace xparam {
 
-/// The summary as JSON (schemas/summary.schema.json). Metrics that are NaN (not available)
-/// become null.
+/// One target as JSON (schemas/target.schema.json): name, status (ok, suspect, failed), error,
+/// reasons (why suspect), files and their SHA-256, metrics by archive column name, seconds by
+/// stage. Numbers that are NaN (not available) and counts of -1 become null. `ran` is added
+/// only when `with_ran` (the summary: whether this run executed it).
+nlohmann::ordered_json target_json(const TargetOutcome& outcome, bool with_ran);
+
+/// The summary as JSON (schemas/summary.schema.json).
 nlohmann::ordered_json summary_json(const BatchSummary& summary);
 
 /// Write summary_json(summary) to `path` (pretty-printed).

@@ -57,7 +57,10 @@ void add_problem(TargetSpec& target, const std::string& problem) {
   target.problem += problem;
 }
 
-TargetSpec target_from_files(const std::string& name, NamedFiles files, const std::filesystem::path& folder) {
+// Target `name` of a folder from the files found for it; `anchors_beside`: its anchors are among
+// them (the convention), so their absence or doubling is a problem.
+TargetSpec target_from_files(const std::string& name, NamedFiles files, const std::filesystem::path& folder,
+                             bool anchors_beside) {
   std::sort(files.meshes.begin(), files.meshes.end());
   std::sort(files.anchors.begin(), files.anchors.end());
   TargetSpec target;
@@ -72,6 +75,7 @@ TargetSpec target_from_files(const std::string& name, NamedFiles files, const st
     add_problem(target, "no mesh for target \"" + name + "\" in " + folder.string() + " (expected " + name +
                             ".obj, .ply, .off or .stl beside " +
                             (files.anchors.empty() ? files.ground_truth : files.anchors.front()).string() + ")");
+  if (!anchors_beside) return target;
   if (files.anchors.size() > 1)
     add_problem(target, "two anchor files for target \"" + name + "\": " + join_file_names(files.anchors));
   if (files.anchors.empty())
@@ -80,7 +84,33 @@ TargetSpec target_from_files(const std::string& name, NamedFiles files, const st
   return target;
 }
 
-std::vector<TargetSpec> discover_folder(const std::filesystem::path& folder) {
+// The anchor file of mesh NAME through a non-default lookup: the pattern's file in its folder, or
+// the convention's names there.
+void look_up_anchors(TargetSpec& target, const std::filesystem::path& folder, const AnchorLookup& lookup) {
+  const std::filesystem::path where = lookup.folder.empty() ? folder : lookup.folder;
+  std::vector<std::filesystem::path> candidates;
+  if (!lookup.pattern.empty()) {
+    std::string file = lookup.pattern;
+    for (std::size_t at = file.find("{stem}"); at != std::string::npos; at = file.find("{stem}", at + target.name.size()))
+      file.replace(at, 6, target.name);
+    candidates.push_back(where / file);
+  } else {
+    for (const char* suffix : {".anchors.json", ".anchors.txt", ".pp"}) candidates.push_back(where / (target.name + suffix));
+  }
+  std::vector<std::filesystem::path> found;
+  std::error_code error;
+  for (const std::filesystem::path& candidate : candidates)
+    if (std::filesystem::is_regular_file(candidate, error)) found.push_back(candidate);
+  if (found.size() > 1)
+    add_problem(target, "two anchor files for target \"" + target.name + "\": " + join_file_names(found));
+  if (found.empty())
+    add_problem(target, "no anchors for " + target.mesh.string() + " (expected " + join_file_names(candidates) +
+                            (lookup.pattern.empty() ? "" : ", from --anchors-pattern '" + lookup.pattern + "'") + ")");
+  else
+    target.anchors = found.front();
+}
+
+std::vector<TargetSpec> discover_folder(const std::filesystem::path& folder, const AnchorLookup& lookup) {
   std::map<std::string, NamedFiles> by_name;
   std::error_code error;
   std::filesystem::directory_iterator it(folder, error);
@@ -94,6 +124,7 @@ std::vector<TargetSpec> discover_folder(const std::filesystem::path& folder) {
       if (lowered.size() <= suffix.text.size() || !lowered.ends_with(suffix.text)) continue;
       NamedFiles& files = by_name[file_name.substr(0, file_name.size() - suffix.text.size())];
       const std::filesystem::path path = folder / file_name;
+      if (suffix.role == FileRole::Anchors && !lookup.is_default()) break;  // anchors are looked up elsewhere
       switch (suffix.role) {
         case FileRole::Mesh: files.meshes.push_back(path); break;
         case FileRole::Anchors: files.anchors.push_back(path); break;
@@ -106,8 +137,18 @@ std::vector<TargetSpec> discover_folder(const std::filesystem::path& folder) {
   for (auto& [name, files] : by_name) {
     // A lone ground-truth file is not a target: it only describes one.
     if (files.meshes.empty() && files.anchors.empty()) continue;
-    targets.push_back(target_from_files(name, std::move(files), folder));
+    if (lookup.is_default()) {
+      targets.push_back(target_from_files(name, std::move(files), folder, true));
+      continue;
+    }
+    if (files.meshes.empty()) continue;  // a ground truth alone
+    TargetSpec target = target_from_files(name, std::move(files), folder, false);
+    look_up_anchors(target, folder, lookup);
+    targets.push_back(std::move(target));
   }
+  if (targets.empty())
+    throw InputError(folder.string() + ": no target meshes (.obj, .ply, .off or .stl) in the folder; --targets takes "
+                     "a folder of meshes with their anchor files, or a manifest (README, \"Your own data\")");
   return targets;  // std::map iteration: already sorted by name
 }
 
@@ -168,14 +209,28 @@ std::vector<TargetSpec> read_manifest(const std::filesystem::path& manifest) {
   return targets;
 }
 
-std::vector<TargetSpec> discover_targets(const std::filesystem::path& source) {
+std::vector<TargetSpec> discover_targets(const std::filesystem::path& source, const AnchorLookup& anchors) {
   std::error_code error;
-  if (std::filesystem::is_regular_file(source, error)) return read_manifest(source);
-  if (!std::filesystem::is_directory(source, error))
-    throw InputError(source.string() + ": no such folder or manifest file");
-  const std::filesystem::path manifest = source / kManifestFileName;
-  if (std::filesystem::is_regular_file(manifest, error)) return read_manifest(manifest);
-  return discover_folder(source);
+  std::filesystem::path manifest = source;
+  if (!std::filesystem::is_regular_file(source, error)) {
+    if (!std::filesystem::is_directory(source, error))
+      throw InputError(source.string() + ": no such folder or manifest file");
+    manifest = source / kManifestFileName;
+  }
+  if (std::filesystem::is_regular_file(manifest, error)) {
+    if (!anchors.is_default())
+      throw InputError(manifest.string() + ": a manifest names each target's anchors; --anchors-dir and "
+                       "--anchors-pattern apply to a folder of meshes");
+    return read_manifest(manifest);
+  }
+  if (!anchors.folder.empty() && !std::filesystem::is_directory(anchors.folder, error))
+    throw InputError("--anchors-dir " + anchors.folder.string() + ": no such folder");
+  if (!anchors.pattern.empty() &&
+      (anchors.pattern.find("{stem}") == std::string::npos || anchors.pattern.find('/') != std::string::npos))
+    throw InputError("--anchors-pattern '" + anchors.pattern +
+                     "': a file name with {stem} for the mesh's name without extension, e.g. "
+                     "'{stem}_landmarks.json' (no '/': the folder is --anchors-dir)");
+  return discover_folder(source, anchors);
 }
 
 Shard parse_shard(const std::string& text) {

@@ -1,13 +1,16 @@
 #include "batch/target_job.h"
 
+#include "batch/common_anchors.h"
 #include "batch/file_order.h"
 #include "batch/ground_truth.h"
+#include "core/anchor_placement.h"
 #include "core/errors.h"
 #include "core/stopwatch.h"
 #include "core/orientation.h"
 #include "io/anchor_reader.h"
 #include "io/mesh_loader.h"
 #include "io/sha256.h"
+#include "layout/anchor_swaps.h"
 
 #include <tbb/task_arena.h>
 
@@ -43,6 +46,7 @@ LoadedMesh load_target_mesh(const PreparedTemplate& prepared, const TargetSpec& 
 // and the ground truth when given.
 void read_target_inputs(const PreparedTemplate& prepared, const TargetSpec& target, LoadedTarget& out) {
   out.anchors = anchors_in_mesh_order(read_anchors(target.anchors), out.loaded.file_order);
+  if (!prepared.only_anchors.empty()) out.anchors = only_anchors(out.anchors, prepared.only_anchors);
   match_anchors(prepared.anchors, out.anchors);
   if (!target.ground_truth.empty()) {
     out.ground_truth = read_ground_truth(target.ground_truth);
@@ -111,6 +115,7 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
   metrics.e_ang = mapping.distortion.all.e_ang;
   metrics.stretch_max_sv = mapping.distortion.all.stretch_max_sv;
   metrics.flipped_faces = static_cast<int>(mapping.quality.flipped_faces.size());
+  metrics.strictly_folded_faces = mapping.quality.strictly_folded_faces;
   metrics.area_ratio = mapping.quality.area_ratio;
   metrics.swaps = mapping.optimization.swaps;
   metrics.merges = mapping.optimization.merges;
@@ -128,11 +133,26 @@ std::string describe_failure(const TargetSpec& target, const std::string& messag
   return (target.mesh.empty() ? target.name : target.mesh.string()) + ": " + message;
 }
 
+// Landmarks that look traded between the two meshes, on the layout the map was built on (its
+// anchors are vertices of both refined meshes, in the order of the placed anchors).
+std::vector<SwappedAnchors> swapped_landmarks(const PairMapping& mapping) {
+  const Layout& layout = mapping.layout.layout;
+  std::vector<std::string> names;
+  for (const PlacedAnchor& anchor : mapping.anchors[0].anchors) names.push_back(anchor.name);
+  XP_ASSERT(names.size() == layout.sides[0].anchor_vertices.size());
+  return find_swapped_anchors(layout.sides[0].mesh, layout.sides[0].anchor_vertices, layout.sides[1].mesh,
+                              layout.sides[1].anchor_vertices, names);
+}
+
 void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, const PairSettings& settings,
-                TargetRecord& record) {
+                const QualityLimits& limits, const StageCallback& on_stage, TargetRecord& record) {
   if (!target.problem.empty()) throw InputError(target.problem);
+  const auto stage = [&](const char* name) {
+    if (on_stage) on_stage(name);
+  };
   Stopwatch watch;
   LoadedTarget loaded;
+  stage("load");
   loaded.loaded = load_target_mesh(prepared, target);
   record.seconds[kLoad] = watch.lap();
   read_target_inputs(prepared, target, loaded);
@@ -142,7 +162,7 @@ void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, cons
   // whole target, so at most -j targets are in memory at once.
   const PairMapping mapping = tbb::this_task_arena::isolate([&] {
     return map_pair(prepared.loaded.mesh, prepared.anchors, loaded.loaded.mesh, loaded.anchors, prepared.curves,
-                    settings);
+                    settings, on_stage);
   });
   watch.lap();
   record.seconds[kAnchors] = reading_anchors + mapping.seconds.anchors;
@@ -151,13 +171,17 @@ void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, cons
   record.seconds[kParameterize] = mapping.seconds.parameterize;
   record.seconds[kCompose] = mapping.seconds.compose;
   fill_outputs(mapping, prepared, loaded, record);
+  const TargetJudgement judgement = judge_mapping(mapping, swapped_landmarks(mapping), limits);
+  record.suspect = judgement.verdict == Verdict::Suspect;
+  record.diagnosis = judgement.diagnosis.dump();
   record.seconds[kOutputs] = mapping.seconds.metrics + watch.lap();
   record.ok = true;
 }
 
 }  // namespace
 
-TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& target, const PairSettings& settings) {
+TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& target, const PairSettings& settings,
+                        const QualityLimits& limits, const StageCallback& on_stage) {
   Stopwatch total;
   TargetRecord record;
   record.name = target.name;
@@ -178,7 +202,7 @@ TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& targ
     record = std::move(failed);
   };
   try {
-    run_stages(prepared, target, settings, record);
+    run_stages(prepared, target, settings, limits, on_stage, record);
   } catch (const std::exception& e) {
     fail(e.what());
   } catch (...) {
@@ -194,6 +218,10 @@ std::string check_target(const PreparedTemplate& prepared, const TargetSpec& tar
     LoadedTarget loaded;
     loaded.loaded = load_target_mesh(prepared, target);
     read_target_inputs(prepared, target, loaded);
+    // Placing on a copy refuses what map_pair's placement would: an index out of range, two
+    // anchors on one vertex, a point that does not reach the surface.
+    Mesh refined = loaded.loaded.mesh;
+    place_anchors(refined, loaded.loaded.mesh, loaded.anchors);
     return {};
   } catch (const std::exception& e) {
     return describe_failure(target, e.what());

@@ -11,6 +11,7 @@
 /// built, any std::exception) becomes a failed record whose error names the file.
 
 #include "batch/target_discovery.h"
+#include "batch/target_verdict.h"
 #include "batch/template_preparation.h"
 #include "io/archive_records.h"
 #include "map/pair_mapping.h"
@@ -19,14 +20,19 @@
 
 namespace xparam {
 
-/// Run the whole pipeline for `target` against `prepared` and return its record (ok or failed).
+/// Run the whole pipeline for `target` against `prepared` and return its record (ok, suspect
+/// by `limits`, or failed), with its diagnosis. `on_stage` hears each stage as it starts
+/// ("load", then map_pair's stages).
 /// Thread-safe: jobs for different targets may run at once on the same template.
 TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& target,
-                        const PairSettings& settings = {});
+                        const PairSettings& settings = {}, const QualityLimits& limits = {},
+                        const StageCallback& on_stage = {});
 
 /// Check `target`'s inputs without mapping (what --dry-run does): the mesh loads and is usable,
-/// the anchors read and carry exactly the template's names, the genus equals the template's,
-/// the ground truth (when given) reads and fits. Returns the problem, empty when none.
+/// the anchors read and carry exactly the template's names (of its only_anchors when set) and
+/// place on the mesh (indices in range, no two on one vertex), the genus equals the template's,
+/// the ground truth (when given) reads and fits: every input error the run would meet. Returns
+/// the problem, empty when none.
 std::string check_target(const PreparedTemplate& prepared, const TargetSpec& target);
 
 }  // namespace xparam

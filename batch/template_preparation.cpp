@@ -1,5 +1,6 @@
 #include "batch/template_preparation.h"
 
+#include "batch/common_anchors.h"
 #include "batch/file_order.h"
 #include "core/anchor_placement.h"
 #include "core/errors.h"
@@ -86,6 +87,8 @@ PreparedTemplate prepare_template(const TemplateInputs& inputs) {
                      "; the consistent layout needs a closed genus-0 template");
   const FileOrder& order = prepared.loaded.file_order;
   prepared.anchors = anchors_in_mesh_order(read_anchors(inputs.anchors), order);
+  if (!inputs.only_anchors.empty()) prepared.anchors = only_anchors(prepared.anchors, inputs.only_anchors);
+  prepared.only_anchors = inputs.only_anchors;
   // Placing on a copy proves every anchor lands on the template (map_pair places them again).
   Mesh refined = prepared.loaded.mesh;
   const PlacedAnchors placed = place_anchors(refined, prepared.loaded.mesh, prepared.anchors);

@@ -9,6 +9,7 @@
 #include "io/mesh_loader.h"
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace xparam {
@@ -18,12 +19,16 @@ struct TemplateInputs {
   std::filesystem::path mesh;     ///< template mesh (OBJ, PLY, OFF, STL)
   std::filesystem::path anchors;  ///< its anchors (JSON, .pp or text; io/anchor_reader.h)
   std::filesystem::path curves;   ///< feature curves (JSON); empty when none
+  /// Map through these anchor names only, on the template and on every target (--common-anchors,
+  /// batch/common_anchors.h); empty: every anchor of the template's file.
+  std::vector<std::string> only_anchors;
 };
 
 /// Everything a target job needs from the template.
 struct PreparedTemplate {
   LoadedMesh loaded;                 ///< the input mesh, outward oriented, provenance started
-  AnchorSet anchors;                 ///< as read; face + barycentric anchors in the mesh's corner order
+  AnchorSet anchors;                 ///< as read (only_anchors kept); face + barycentric anchors in the mesh's corner order
+  std::vector<std::string> only_anchors;  ///< TemplateInputs::only_anchors: a target's other anchors are left out
   std::vector<FeatureCurve> curves;  ///< checked against the mesh, in the mesh's corner order
   /// The archive's /template: vertices and faces exactly as in the file (faces in the file's
   /// corner order), anchors, curves as face + barycentrics in the file's corner order, SHA-256

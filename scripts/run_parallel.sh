@@ -3,15 +3,15 @@
 # archives into one (its datasets are identical to those of a single run over the folder).
 #
 # Usage:
-#   scripts/run_parallel.sh SHARDS ARCHIVE.h5 XPARAM_BATCH_OPTIONS...
+#   scripts/run_parallel.sh [--xparam PATH] SHARDS ARCHIVE.h5 XPARAM_BATCH_OPTIONS...
 # e.g.
 #   scripts/run_parallel.sh 4 out/all.h5 --template tests/data/human_man.obj \
 #       --template-anchors tests/data/human.anchors.json --targets tests/data/sample_targets -j 1
 #
 # Shard i writes ARCHIVE.h5.shards/shard_i.h5 (with --resume, so running the script again after
 # an interruption only completes what is missing). Do not pass --out or --shard yourself.
-# Environment: XPARAM (the xparam program; default: `xparam` on PATH), PARALLEL_JOBS (shards
-# run at once; default: SHARDS).
+# The xparam program: --xparam PATH, else $XPARAM, else `xparam` on PATH, else this checkout's
+# build/src/cli/xparam. PARALLEL_JOBS: shards run at once (default: SHARDS).
 # Exit status: that of xparam batch (0 all ok, 2 some targets failed, recorded in the archive);
 # 3 when a shard or the merge failed fatally, 1 on a usage error.
 set -euo pipefail
@@ -21,6 +21,13 @@ usage() {
   exit 1
 }
 
+source "$(dirname "${BASH_SOURCE[0]}")/find_xparam.sh"
+explicit=
+if [[ ${1:-} == --xparam ]]; then
+  [[ $# -ge 2 ]] || usage
+  explicit=$2
+  shift 2
+fi
 [[ $# -ge 2 ]] || usage
 shards=$1
 out=$2
@@ -32,7 +39,7 @@ for arg in "$@"; do
   esac
 done
 command -v parallel >/dev/null || { echo "run_parallel.sh: GNU parallel is not installed" >&2; exit 3; }
-xparam=${XPARAM:-xparam}
+find_xparam run_parallel.sh "$explicit"
 jobs=${PARALLEL_JOBS:-$shards}
 
 shard_dir="$out.shards"

@@ -8,8 +8,10 @@
 # depends on the whole array merges the shard archives (the merged datasets are identical to
 # those of a single run over all targets).
 #
-#   scripts/slurm_batch.sh submit   on the login node: submits the array (0..N-1, N = XPARAM_SHARDS)
-#                                   and the merge job (--dependency=afterany on the array)
+#   scripts/slurm_batch.sh [--xparam PATH] submit
+#                                   on the login node: submits the array (0..N-1, N = XPARAM_SHARDS)
+#                                   and the merge job (--dependency=afterany on the array); the jobs
+#                                   run the xparam found here (exported to them as XPARAM)
 #   scripts/slurm_batch.sh          inside array task i (SLURM_ARRAY_TASK_ID=i): runs shard i/N
 #   scripts/slurm_batch.sh merge    merges ARCHIVE.h5.shards/shard_*.h5 into ARCHIVE.h5
 #
@@ -20,13 +22,28 @@
 #   XPARAM_THREADS       -j of each shard (default: SLURM_CPUS_PER_TASK, else 1)
 #   XPARAM_OPTIONS       further options of `xparam batch` for every shard, split at spaces
 #                        (e.g. "--no-optimize-map --max-maps 3")
-#   XPARAM               the xparam program (default: `xparam` on PATH)
+#   XPARAM               the xparam program (default: --xparam PATH, else `xparam` on PATH, else
+#                        this checkout's build/src/cli/xparam)
 # A shard runs with --resume: resubmitting after a node failure completes only what is missing.
 # The array uses afterany, not afterok: a shard with failed targets exits 2 (they are recorded
 # in its archive) and must still be merged.
 set -euo pipefail
 
-xparam=${XPARAM:-xparam}
+explicit=
+if [[ ${1:-} == --xparam ]]; then
+  explicit=${2:?slurm_batch.sh: --xparam needs a path}
+  shift 2
+fi
+# Inside a job Slurm runs a copy of this file from its spool folder: the finder beside it is
+# found only on the login node, and the jobs get its answer as XPARAM (sbatch --export=ALL).
+here=$(dirname "${BASH_SOURCE[0]}")
+if [[ -f $here/find_xparam.sh ]]; then
+  source "$here/find_xparam.sh"
+  find_xparam slurm_batch.sh "$explicit"
+else
+  xparam=${explicit:-${XPARAM:-xparam}}
+fi
+export XPARAM=$xparam
 require() {
   local name=$1
   [[ -n ${!name:-} ]] || { echo "slurm_batch.sh: set $name" >&2; exit 1; }

@@ -29,7 +29,7 @@
 // true counterpart of template vertex k (a point within about a millimetre of the decimated
 // surface: the header line gives that distance, the floor of the error).
 //
-// Pair sets (--set NAME): "table" (the documented list of the README's Table 1), "realistic"
+// Pair sets (--set NAME): "table" (the documented list of docs/evaluation.md), "realistic"
 // (the human pairs of issue 19: SHREC'19 shapes with the 73 CAESAR and the 29 anthropometric
 // landmarks, and FAUST registrations against decimated targets with the 73 CAESAR, the 29
 // anthropometric and the 72 scan landmarks), "shrec19", "faust_decimated".
@@ -210,7 +210,7 @@ PairSpec plain_pair(const std::string& name, const fs::path& source, const fs::p
   return pair;
 }
 
-// The documented list (README, "Evaluation"): humans in other poses and of other subjects with
+// The documented list (docs/evaluation.md): humans in other poses and of other subjects with
 // the 73 CAESAR landmarks (FAUST registrations, and SHREC'19 shapes of other connectivities
 // through their SMPL registration), TOSCA pairs within a class (exact ground truth) and across
 // classes, and two pairs of Schmidt et al. 2023; then issue 19's realistic human pairs: every

@@ -1,15 +1,20 @@
 // `xparam batch`: one template against a folder (or manifest) of targets, into one archive.
+#include "cli/batch_progress.h"
+#include "cli/command_line.h"
 #include "cli/commands.h"
 #include "cli/map_options.h"
 #include "cli/stop_signals.h"
+#include "cli/text_format.h"
 
 #include "batch/batch_driver.h"
 #include "batch/batch_plan.h"
+#include "batch/common_anchors.h"
 #include "batch/summary_json.h"
 #include "batch/target_discovery.h"
 #include "batch/template_preparation.h"
 #include "core/errors.h"
 #include "io/archive_commit.h"
+#include "io/anchor_reader.h"
 #include "io/archive_lock.h"
 #include "io/output_paths.h"
 
@@ -36,6 +41,8 @@ struct BatchOptions {
   std::string template_anchors;
   std::string curves;
   std::string targets;
+  AnchorLookup anchors;  ///< --anchors-dir, --anchors-pattern
+  bool common_anchors = false;  ///< --common-anchors
   std::string out;
   int threads = tbb::info::default_concurrency();
   bool resume = false;
@@ -45,8 +52,11 @@ struct BatchOptions {
   bool dry_run = false;
   std::string summary;
   bool keep_parts = false;
+  bool quiet = false;  ///< no plan, no progress, no closing line (errors still)
   double checkpoint_seconds = 30.0;
   PairSettings map;  ///< --optimize, --merge, --no-stretch, --keep-corners, --second-layout, --untangle, --release-anchors
+  QualityLimits limits;  ///< --max-folds, --max-e-l2, --max-area-deviation, --max-anchor-miss
+  bool fail_on_suspect = false;  ///< exit 2 when a target is suspect, as when one failed
 };
 
 [[noreturn]] void exit_with(int code, const std::string& message) {
@@ -95,54 +105,40 @@ void print_plan(const BatchPlan& plan, const BatchOptions& options, std::ostream
     out << "  (" << plan.foreign.size() << " other targets already in the archive stay as they are)\n";
 }
 
-std::string clock_text(double seconds) {
-  const long total = static_cast<long>(seconds + 0.5);
-  char text[32];
-  std::snprintf(text, sizeof(text), "%ld:%02ld:%02ld", total / 3600, total / 60 % 60, total % 60);
-  return text;
-}
-
-// " (N anchors released)" for a target mapped without some of its anchors (--release-anchors).
-std::string released_text(const TargetOutcome& outcome) {
-  const int released = outcome.metrics.released_anchors;
-  if (released <= 0) return "";
-  return " (" + std::to_string(released) + (released == 1 ? " anchor" : " anchors") +
-         " released: see anchor_miss in the archive)";
-}
-
-// Progress on stderr: a live line on a terminal, one plain line per target otherwise.
-class ProgressPrinter {
- public:
-  ProgressPrinter() : live_(isatty(STDERR_FILENO) == 1) {}
-
-  void operator()(const BatchProgress& p) {
-    const TargetOutcome& last = *p.last;
-    std::ostringstream counter;
-    counter << "[" << p.done << "/" << p.total << "]";
-    if (!live_) {
-      std::cerr << counter.str() << " " << (last.ok ? "ok " : "FAILED ") << last.name;
-      if (last.ok) std::cerr << " " << last.seconds << " s" << released_text(last);
-      else std::cerr << ": " << last.error;
-      std::cerr << std::endl;
-      return;
-    }
-    const double rate = p.elapsed_seconds > 0 ? static_cast<double>(p.done) / p.elapsed_seconds : 0.0;
-    const double eta = rate > 0 ? static_cast<double>(p.total - p.done) / rate : 0.0;
-    // A failure gets its own permanent line above the live one.
-    if (!last.ok) std::cerr << "\r\033[KFAILED " << last.name << ": " << last.error << "\n";
-    if (last.ok && last.metrics.released_anchors > 0)
-      std::cerr << "\r\033[K" << last.name << released_text(last) << "\n";
-    char rate_text[32];
-    std::snprintf(rate_text, sizeof(rate_text), "%.2f", rate);
-    std::cerr << "\r\033[K" << counter.str() << " " << rate_text << " targets/s, ETA " << clock_text(eta) << ", "
-              << p.failed << " failed; last: " << last.name << (p.done == p.total ? "\n" : "") << std::flush;
+// --common-anchors: what is kept and what is left out, and why.
+void print_common_anchors(const CommonAnchors& common, std::ostream& out) {
+  out << "anchors: " << plural(common.names.size(), "name") << " shared by the template and every target";
+  if (common.left_out.empty()) {
+    out << "; none left out\n";
+    return;
   }
+  out << "; left out:\n";
+  for (const LeftOutAnchor& name : common.left_out) {
+    out << "  \"" << name.name << "\": ";
+    if (name.missing_on == 0)
+      out << "not on the template\n";
+    else
+      out << "missing on " << plural(name.missing_on, "target file") << " (e.g. " << name.example << ")\n";
+  }
+}
 
- private:
-  bool live_;
-};
+// What a run with these options would do, as the options it would record (and how targets find
+// their anchors): a dry run's proof that the command line says what the user meant.
+void print_effective_options(const BatchOptions& options, std::ostream& out) {
+  out << "options: " << batch_options_json(options.map, options.limits) << "\n"
+      << "run: -j " << options.threads << ", shard " << options.shard
+      << (options.fail_on_suspect ? ", --fail-on-suspect" : "") << "\n"
+      << "anchor files: "
+      << (options.anchors.is_default()
+              ? std::string("beside each mesh as NAME.anchors.json, NAME.anchors.txt or NAME.pp")
+              : "in " + (options.anchors.folder.empty() ? options.targets : options.anchors.folder.string()) + " as " +
+                    (options.anchors.pattern.empty() ? std::string("NAME.anchors.json, NAME.anchors.txt or NAME.pp")
+                                                     : options.anchors.pattern))
+      << "\n";
+}
 
 int run_dry(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchOptions& options) {
+  print_effective_options(options, std::cout);
   print_plan(plan, options, std::cout);
   const std::vector<TargetOutcome> checked = check_batch(prepared, plan, options.threads);
   std::size_t problems = 0;
@@ -150,8 +146,9 @@ int run_dry(const PreparedTemplate& prepared, const BatchPlan& plan, const Batch
     std::cout << "  check " << outcome.name << ": " << (outcome.ok ? "ok" : "FAILS: " + outcome.error) << "\n";
     problems += !outcome.ok;
   }
-  std::cout << "dry run: template ok, " << checked.size() - problems << " of " << checked.size()
-            << " targets to run pass the checks; nothing written\n";
+  std::cout << "dry run: template ok (" << plural(prepared.anchors.anchors.size(), "anchor") << "), "
+            << checked.size() - problems << " of " << plural(checked.size(), "target")
+            << " to run pass the checks; nothing written\n";
   return problems > 0 ? kExitSomeFailed : 0;
 }
 
@@ -178,9 +175,10 @@ void refuse_to_replace(const BatchOptions& options) {
 }
 
 void print_interrupted(const BatchSummary& summary) {
-  std::cerr << "xparam batch: interrupted: " << summary.ran << " targets ran and are committed, " << summary.not_run
-            << " did not start; archive " << summary.archive.string() << " holds " << summary.archive_targets
-            << " targets. Run the same command with --resume to continue.\n";
+  std::cerr << "xparam batch: interrupted: " << plural(summary.ran, "target") << " ran and "
+            << (summary.ran == 1 ? "is" : "are") << " committed, " << summary.not_run << " did not start; archive "
+            << summary.archive.string() << " holds " << plural(summary.archive_targets, "target")
+            << ". Run the same command with --resume to continue.\n";
 }
 
 int run_command(const BatchOptions& options) {
@@ -188,7 +186,7 @@ int run_command(const BatchOptions& options) {
   std::vector<TargetSpec> discovered;
   try {
     shard = parse_shard(options.shard);
-    discovered = discover_targets(options.targets);
+    discovered = discover_targets(options.targets, options.anchors);
   } catch (const Error& e) {
     exit_with(kExitUsage, e.what());
   }
@@ -205,9 +203,18 @@ int run_command(const BatchOptions& options) {
     refuse_to_replace(options);
   }
 
+  const ProgressMode mode = progress_mode_for_stderr(options.quiet || options.dry_run);
+  std::optional<BatchProgressView> view(std::in_place, mode, std::size_t{0});
+  view->preparing("reading the template " + options.template_mesh);
   PreparedTemplate prepared;
+  std::optional<CommonAnchors> common;  // --common-anchors
   try {
-    prepared = prepare_template({options.template_mesh, options.template_anchors, options.curves});
+    TemplateInputs inputs{options.template_mesh, options.template_anchors, options.curves, {}};
+    if (options.common_anchors) {
+      common = common_anchor_names(read_anchors(options.template_anchors), discovered);
+      inputs.only_anchors = common->names;
+    }
+    prepared = prepare_template(inputs);
   } catch (const std::exception& e) {
     exit_with(kExitFatal, std::string("template: ") + e.what());
   }
@@ -216,10 +223,18 @@ int run_command(const BatchOptions& options) {
     const std::map<std::string, ArchiveTargetSummary> committed =
         options.resume ? committed_targets(options.out) : std::map<std::string, ArchiveTargetSummary>{};
     const BatchPlan plan =
-        plan_batch(discovered, shard, committed, options.retry_failed, batch_options_json(options.map));
-    if (options.dry_run) return run_dry(prepared, plan, options);
+        plan_batch(discovered, shard, committed, options.retry_failed, batch_options_json(options.map, options.limits));
+    if (options.dry_run) {
+      if (common) print_common_anchors(*common, std::cout);
+      return run_dry(prepared, plan, options);
+    }
 
-    print_plan(plan, options, std::cerr);
+    view.reset();  // the plan's count of targets to run is known now
+    if (!options.quiet) {
+      print_plan(plan, options, std::cerr);
+      if (common) print_common_anchors(*common, std::cerr);
+    }
+    view.emplace(mode, plan.count(TargetAction::Run));
     const StopSignals signals;
     BatchSettings settings;
     settings.archive = options.out;
@@ -228,22 +243,59 @@ int run_command(const BatchOptions& options) {
     settings.keep_parts = options.keep_parts;
     settings.checkpoint_seconds = options.checkpoint_seconds;
     settings.pair = options.map;
+    settings.limits = options.limits;
     settings.stop = &signals.requested();
-    ProgressPrinter printer;
-    const BatchSummary summary = run_batch(prepared, plan, settings, [&](const BatchProgress& p) { printer(p); });
+    const BatchSummary summary =
+        run_batch(prepared, plan, settings, [&](const BatchProgress& p) { view->finished(p); },
+                  [&](const std::string& target, const std::string& stage) { view->stage(target, stage); });
+    view.reset();
     if (!options.summary.empty()) write_summary(summary, options.summary);
     if (summary.interrupted) {
       print_interrupted(summary);
       return kExitInterrupted;
     }
-    std::cerr << "xparam batch: " << summary.targets.size() << " targets: " << summary.succeeded << " ok, "
-              << summary.failed << " failed (" << summary.ran << " run, " << summary.kept << " kept) in "
-              << summary.seconds << " s; archive " << summary.archive.string() << " holds "
-              << summary.archive_targets << " targets\n";
-    return summary.failed > 0 ? kExitSomeFailed : 0;
+    if (!options.quiet)
+      std::cerr << "xparam batch: " << plural(summary.targets.size(), "target") << ": "
+              << summary.succeeded - summary.suspect << " ok, " << summary.suspect << " suspect, " << summary.failed
+              << " failed (" << summary.ran << " run, " << summary.kept << " kept) in " << seconds_text(summary.seconds)
+              << "; archive " << summary.archive.string() << " holds " << plural(summary.archive_targets, "target")
+              << (summary.suspect > 0 ? "; xparam inspect ARCHIVE --target NAME says why a target is suspect" : "")
+              << "\n";
+    const bool suspect_fails = options.fail_on_suspect && summary.suspect > 0;
+    return summary.failed > 0 || suspect_fails ? kExitSomeFailed : 0;
   } catch (const std::exception& e) {
     exit_with(kExitFatal, e.what());
   }
+}
+
+// The quality limits of the verdict (batch/target_verdict.h) and what a suspect target does to
+// the exit status.
+void add_quality_options(CLI::App& batch, BatchOptions& options) {
+  QualityLimits& limits = options.limits;
+  batch
+      .add_option("--max-folds", limits.max_folds,
+                  "A target is suspect when its remesh has more faces folded by the strict count than this")
+      ->check(at_least(0))
+      ->capture_default_str();
+  batch
+      .add_option("--max-e-l2", limits.max_e_l2,
+                  "A target is suspect when the map's global L2 stretch E_L2 is above this (1: an isometry up "
+                  "to scale; good maps are 1-7)")
+      ->check(at_least(0, false))
+      ->capture_default_str();
+  batch
+      .add_option("--max-area-deviation", limits.max_area_deviation,
+                  "A target is suspect when its area ratio (remesh area / target area) is farther than this from 1")
+      ->check(at_least(0))
+      ->capture_default_str();
+  batch
+      .add_option("--max-anchor-miss", limits.max_anchor_miss,
+                  "A target is suspect when the map misses a landmark (a released anchor, --anchor-slack) by more "
+                  "than this fraction of the square root of the target's area")
+      ->check(at_least(0))
+      ->capture_default_str();
+  batch.add_flag("--fail-on-suspect", options.fail_on_suspect,
+                 "Exit with status 2 when a target is suspect, as when one failed (for scripts)");
 }
 
 }  // namespace
@@ -254,8 +306,9 @@ void add_batch_command(CLI::App& app) {
       "batch",
       "Cross-parameterize one template against every target of a folder (NAME.obj|ply|off|stl with "
       "NAME.anchors.json|NAME.anchors.txt|NAME.pp beside it, optional NAME.gt.txt) or of a manifest "
-      "(schemas/manifest.schema.json), into one HDF5 archive. Exit status: 0 all targets ok, 2 some failed "
-      "(each is recorded with its error), 1 usage error (also: OUT exists and neither --resume nor --force was "
+      "(schemas/manifest.schema.json), into one HDF5 archive; each target ends ok, suspect (its map fails a "
+      "quality limit below) or failed. Exit status: 0 no target failed, 2 some failed (each is recorded with its "
+      "error) or, with --fail-on-suspect, some are suspect, 1 usage error (also: OUT exists and neither --resume nor --force was "
       "given), 3 fatal (bad template, unwritable output, full disk, OUT locked by another run), 130 interrupted "
       "(SIGINT/SIGTERM: the targets in flight finish and are committed; --resume continues).");
   batch->add_option("--template", options->template_mesh, "Template mesh (OBJ, PLY, OFF, STL)")
@@ -269,10 +322,19 @@ void add_batch_command(CLI::App& app) {
   batch->add_option("--targets", options->targets, "Folder of targets, or a manifest JSON file")
       ->required()
       ->check(CLI::ExistingPath);
+  batch->add_option("--anchors-dir", options->anchors.folder,
+                    "Folder of the targets' anchor files, when they are not beside the meshes")
+      ->check(CLI::ExistingDirectory);
+  batch->add_option("--anchors-pattern", options->anchors.pattern,
+                    "File name of a target's anchors, {stem} standing for the mesh's name without extension, e.g. "
+                    "'{stem}_landmarks.json' (default: NAME.anchors.json, NAME.anchors.txt or NAME.pp)");
+  batch->add_flag("--common-anchors", options->common_anchors,
+                  "Map through the anchor names the template and every target share; the others are left out "
+                  "everywhere and listed in the plan (default: every target must have the template's names)");
   batch->add_option("--out", options->out, "Output archive (HDF5); its parts go to OUT.parts while running")
       ->required();
-  batch->add_option("-j,--threads", options->threads, "Worker threads for all targets together")
-      ->check(CLI::PositiveNumber)
+  batch->add_option("-j,--threads", options->threads, "Worker threads for all targets together (default: the cores)")
+      ->check(at_least(1))
       ->capture_default_str();
   CLI::Option* resume =
       batch->add_flag("--resume", options->resume,
@@ -286,10 +348,12 @@ void add_batch_command(CLI::App& app) {
   batch->add_flag("--dry-run", options->dry_run, "Check every input and print the plan; write nothing");
   batch->add_option("--summary", options->summary, "Write a JSON summary (schemas/summary.schema.json)");
   add_map_options(*batch, options->map);
+  add_quality_options(*batch, *options);
   batch->add_flag("--keep-parts", options->keep_parts, "Keep OUT.parts after the final assembly");
+  batch->add_flag("-q,--quiet", options->quiet, "No plan, no progress and no closing line on stderr (errors still)");
   batch->add_option("--checkpoint-seconds", options->checkpoint_seconds,
                     "Re-assemble OUT from the committed targets at most this often while running (s)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   batch
       ->add_option_function<std::string>(
@@ -298,6 +362,11 @@ void add_batch_command(CLI::App& app) {
       ->check(CLI::ExistingFile)
       ->trigger_on_parse()
       ->configurable(false);
+  batch->footer(
+      "Examples:\n  xparam batch --template tests/data/human_man.obj --template-anchors tests/data/human.anchors.json "
+      "--targets tests/data/sample_targets --out results.h5\n"
+      "  xparam batch --template T.ply --template-anchors T.json --targets scans --anchors-dir landmarks "
+      "--anchors-pattern '{stem}_landmarks.json' --common-anchors --out scans.h5 --dry-run");
   for (CLI::Option* option : batch->get_options())
     option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   batch->callback([options] {

@@ -177,6 +177,7 @@ void add_check_command(CLI::App& app) {
   check->add_flag("--json", options->json, "Print a JSON array with one object per file");
   check->add_flag("--no-repair", options->no_repair,
                   "Judge the files as they are: inconsistent orientation and pinched vertices block use");
+  check->footer("Example: xparam check scans/*.ply --json > report.json");
   check->callback([options] { run_check(*options); });
 }
 

@@ -1,5 +1,9 @@
 // `xparam inspect ARCHIVE [--json]`: what an archive holds, one line per target.
 #include "cli/commands.h"
+#include "cli/diagnosis_text.h"
+#include "cli/text_format.h"
+
+#include "batch/summary_json.h"
 
 #include "core/errors.h"
 #include "io/archive_reader.h"
@@ -12,6 +16,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace xparam::cli {
@@ -19,17 +24,10 @@ namespace {
 
 struct InspectOptions {
   std::string archive;
+  std::string target;  ///< --target NAME: that target's diagnosis
   bool json = false;
   bool verify = false;
 };
-
-// NaN (no value) prints as "-".
-std::string number(double value) {
-  if (std::isnan(value)) return "-";
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.6g", value);
-  return text;
-}
 
 std::string count(int value) { return value < 0 ? "-" : std::to_string(value); }
 
@@ -39,29 +37,36 @@ std::string padded(std::string text, std::size_t width) {
   return text;
 }
 
-nlohmann::json target_json(const ArchiveTargetSummary& t) {
-  nlohmann::json seconds;
-  for (std::size_t s = 0; s < kTimingStages.size(); ++s) seconds[kTimingStages[s]] = t.seconds[s];
+std::string status_of(const ArchiveTargetSummary& t) { return !t.ok ? "failed" : t.suspect ? "suspect" : "ok"; }
+
+// `inspect --target NAME`: the target's row, its verdict's reasons and its diagnosis.
+void print_target(const ArchiveReader& reader, const std::string& name, bool json) {
+  const std::optional<std::size_t> row = reader.find(name);
+  if (!row) {
+    std::string names;
+    for (const ArchiveTargetSummary& t : reader.targets()) names += (names.empty() ? "" : ", ") + t.name;
+    usage_error("inspect", reader.path().string() + ": no target \"" + name + "\"; it holds " +
+                     (names.empty() ? std::string("none") : names));
+  }
+  const ArchiveTargetSummary& t = reader.targets()[*row];
+  const nlohmann::ordered_json diagnosis =
+      t.diagnosis.empty() ? nlohmann::ordered_json::object() : nlohmann::ordered_json::parse(t.diagnosis, nullptr, false);
+  if (json) {
+    nlohmann::ordered_json out = target_json(outcome_of(t), false);
+    out["diagnosis"] = diagnosis;
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
   const TargetMetrics& m = t.metrics;
-  // nlohmann writes NaN as null: "no value".
-  return {{"name", t.name},
-          {"status", t.ok ? "ok" : "failed"},
-          {"error", t.error},
-          {"mesh_file", t.mesh_file},
-          {"anchors_file", t.anchors_file},
-          {"mesh_sha256", t.mesh_sha256},
-          {"anchors_sha256", t.anchors_sha256},
-          {"metrics",
-           {{"E_L2", m.e_l2},
-            {"E_ang", m.e_ang},
-            {"stretch_max_sv", m.stretch_max_sv},
-            {"flipped_faces", m.flipped_faces},
-            {"area_ratio", m.area_ratio},
-            {"gt_error", m.gt_error},
-            {"swaps", m.swaps},
-            {"merges", m.merges},
-            {"released_anchors", m.released_anchors}}},
-          {"seconds", seconds}};
+  std::cout << t.name << ": " << status_of(t) << "\n  mesh " << t.mesh_file << ", anchors " << t.anchors_file << "\n";
+  if (!t.ok) {
+    std::cout << "  error: " << t.error << "\n";
+    return;
+  }
+  std::cout << "  E_L2 " << figure(m.e_l2) << ", E_ang " << figure(m.e_ang) << ", folded faces " << count(m.flipped_faces)
+            << " (" << count(m.strictly_folded_faces) << " by the strict count), area ratio " << figure(m.area_ratio)
+            << ", released anchors " << count(m.released_anchors) << ", " << seconds_text(t.seconds.back()) << "\n";
+  print_diagnosis(diagnosis, std::cout);
 }
 
 void run_inspect(const InspectOptions& options) {
@@ -71,30 +76,38 @@ void run_inspect(const InspectOptions& options) {
               << " bytes) read in full, every checksum matches\n";
   }
   const ArchiveReader reader(options.archive);
+  if (!options.target.empty()) return print_target(reader, options.target, options.json);
   const TemplateRecord t = reader.read_template();
   const ArchiveProvenance& p = reader.provenance();
   std::size_t ok = 0;
-  for (const ArchiveTargetSummary& target : reader.targets()) ok += target.ok;
-  const std::size_t failed = reader.targets().size() - ok;
+  std::size_t suspect = 0;
+  for (const ArchiveTargetSummary& target : reader.targets()) {
+    ok += target.ok && !target.suspect;
+    suspect += target.suspect;
+  }
+  const std::size_t failed = reader.targets().size() - ok - suspect;
 
   if (options.json) {
-    nlohmann::json out;
+    nlohmann::ordered_json out;
     out["archive"] = options.archive;
     out["schema_version"] = reader.schema_version();
     out["xparam_version"] = p.xparam_version;
     out["git_revision"] = p.git_revision;
-    const nlohmann::json parsed = nlohmann::json::parse(p.options_json, nullptr, false);
-    out["options"] = parsed.is_discarded() ? nlohmann::json(p.options_json) : parsed;
+    const nlohmann::ordered_json parsed = nlohmann::ordered_json::parse(p.options_json, nullptr, false);
+    out["options"] = parsed.is_discarded() ? nlohmann::ordered_json(p.options_json) : parsed;
     out["template"] = {{"mesh_file", t.mesh_file},
                        {"mesh_sha256", t.mesh_sha256},
                        {"vertices", reader.n_vertices()},
                        {"faces", reader.n_faces()},
                        {"anchors", t.anchor_names.size()},
                        {"curves", t.curves.size()}};
-    out["ok"] = ok;
+    // The counts under the summary's names (schemas/summary.schema.json): succeeded = ok + suspect.
+    out["succeeded"] = ok + suspect;
+    out["suspect"] = suspect;
     out["failed"] = failed;
-    out["targets"] = nlohmann::json::array();
-    for (const ArchiveTargetSummary& target : reader.targets()) out["targets"].push_back(target_json(target));
+    out["targets"] = nlohmann::ordered_json::array();
+    for (const ArchiveTargetSummary& target : reader.targets())
+      out["targets"].push_back(target_json(outcome_of(target), false));
     std::cout << out.dump(2) << "\n";
     return;
   }
@@ -104,18 +117,22 @@ void run_inspect(const InspectOptions& options) {
             << "options: " << p.options_json << "\n"
             << "template: " << t.mesh_file << ", " << reader.n_vertices() << " vertices, " << reader.n_faces()
             << " faces, " << t.anchor_names.size() << " anchors, " << t.curves.size() << " curves\n"
-            << reader.targets().size() << " targets: " << ok << " ok, " << failed << " failed\n";
+            << plural(reader.targets().size(), "target") << ": " << ok << " ok, " << suspect << " suspect, " << failed
+            << " failed\n";
   if (reader.targets().empty()) return;
   std::size_t width = 4;
   for (const ArchiveTargetSummary& target : reader.targets()) width = std::max(width, target.name.size() + 2);
-  std::cout << padded("name", width) << "status  " << padded("E_L2", 10) << padded("E_ang", 10)
-            << padded("flipped", 8) << padded("released", 9) << padded("gt_error", 10) << padded("seconds", 9) << "error\n";
+  std::cout << padded("name", width) << "status   " << padded("E_L2", 10) << padded("E_ang", 10)
+            << padded("folds", 7) << padded("strict", 7) << padded("area", 7) << padded("released", 9)
+            << padded("gt_error", 10) << padded("seconds", 9) << "error or reasons\n";
   for (const ArchiveTargetSummary& target : reader.targets()) {
     const TargetMetrics& m = target.metrics;
-    std::cout << padded(target.name, width) << padded(target.ok ? "ok" : "failed", 8)
-              << padded(number(m.e_l2), 10) << padded(number(m.e_ang), 10) << padded(count(m.flipped_faces), 8)
-              << padded(count(m.released_anchors), 9)
-              << padded(number(m.gt_error), 10) << padded(number(target.seconds.back()), 9) << target.error << "\n";
+    std::cout << padded(target.name, width) << padded(status_of(target), 9) << padded(figure(m.e_l2), 10)
+              << padded(figure(m.e_ang), 10) << padded(count(m.flipped_faces), 7)
+              << padded(count(m.strictly_folded_faces), 7) << padded(figure(m.area_ratio), 7)
+              << padded(count(m.released_anchors), 9) << padded(figure(m.gt_error), 10)
+              << padded(figure(target.seconds.back()), 9)
+              << (target.ok ? joined_reasons(target.diagnosis) : target.error) << "\n";
   }
 }
 
@@ -129,10 +146,16 @@ void add_inspect_command(CLI::App& app) {
   inspect->add_option("archive", options->archive, "Archive (.h5) written by xparam batch or merge")
       ->required()
       ->check(CLI::ExistingFile);
-  inspect->add_flag("--json", options->json, "Print one JSON object (NaN as null) instead of a table");
+  inspect->add_option("--target", options->target,
+                      "Show one target: its figures, why it is suspect, folds by nearest anchor, disagreeing "
+                      "corners, swapped-looking landmarks, released and helper anchors, warnings");
+  inspect->add_flag("--json", options->json,
+                    "Print JSON instead of a table (NaN as null; keys: schemas/target.schema.json)");
   inspect->add_flag("--verify", options->verify,
                     "First read every dataset in full, checking every chunk's checksum (exit 3 naming the first "
                     "damaged dataset)");
+  inspect->footer("Examples: xparam inspect results.h5    xparam inspect results.h5 --target woman    "
+                  "xparam inspect results.h5 --json > results.json");
   inspect->callback([options] { run_inspect(*options); });
 }
 

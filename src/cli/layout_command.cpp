@@ -192,6 +192,10 @@ void add_layout_command(CLI::App& app) {
   command->add_flag("--check", options->check,
                     "Exit with status 2 when the consistency checker finds a violation");
   add_optimization_options(*command, options->optimization);
+  command->footer(
+      "Example: xparam layout --source tests/data/human_man.obj --source-anchors tests/data/human.anchors.json "
+      "--target tests/data/sample_targets/woman.obj --target-anchors tests/data/sample_targets/woman.anchors.json "
+      "--out layout_out --check");
   command->callback([options] {
     const int status = run_layout(*options);
     if (status != 0) throw CLI::RuntimeError(status);

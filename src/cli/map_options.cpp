@@ -1,5 +1,7 @@
 #include "cli/map_options.h"
 
+#include "cli/command_line.h"
+
 #include <string>
 #include <vector>
 
@@ -70,12 +72,12 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       .add_option("--map-coverage", settings.map_optimization.coverage_weight,
                   "Weight of the pull of target vertices the remesh leaves out (a finger it cuts off) against "
                   "the distortion while optimizing the map (default 10; 0: none)")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(at_least(0));
   command
       .add_option("--anchor-slack", settings.anchor_slack,
                   "For landmarks placed by hand on scans: how far (target units) optimizing the map may move "
                   "each anchor's image from its landmark; the miss is reported per anchor (default 0: exact)")
-      ->check(CLI::Range(0.0, 1e300));
+      ->check(at_least(0));
   command
       .add_option("--max-maps", settings.max_maps,
                   "Whole maps a pair may make in all, the first included: the second and third layouts, the "

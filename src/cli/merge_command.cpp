@@ -1,5 +1,6 @@
 // `xparam merge SHARD.h5... --out ARCHIVE.h5`: combine shard archives into one.
 #include "cli/commands.h"
+#include "cli/text_format.h"
 
 #include "core/errors.h"
 #include "io/archive_lock.h"
@@ -32,8 +33,8 @@ void run_merge(const MergeOptions& options) {
     throw CLI::RuntimeError(kExitUsage);
   }
   merge_archives({options.shards.begin(), options.shards.end()}, options.out);
-  std::cout << "merged " << ArchiveReader(options.out).targets().size() << " targets from " << options.shards.size()
-            << " shards into " << options.out << "\n";
+  std::cout << "merged " << plural(ArchiveReader(options.out).targets().size(), "target") << " from "
+            << plural(options.shards.size(), "shard") << " into " << options.out << "\n";
 }
 
 }  // namespace
@@ -46,6 +47,7 @@ void add_merge_command(CLI::App& app) {
   command->add_option("shards", options->shards, "Shard archives (.h5)")->required()->check(CLI::ExistingFile);
   command->add_option("--out", options->out, "Merged archive to write")->required();
   command->add_flag("--force", options->force, "Replace --out when it exists");
+  command->footer("Example: xparam merge shard_0.h5 shard_1.h5 shard_2.h5 --out all.h5");
   command->callback([options] { run_merge(*options); });
 }
 

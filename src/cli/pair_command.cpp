@@ -3,6 +3,7 @@
 #include "cli/commands.h"
 #include "cli/map_options.h"
 #include "cli/pair_outputs.h"
+#include "cli/text_format.h"
 #include "io/anchor_reader.h"
 #include "io/curve_reader.h"
 #include "io/mesh_loader.h"
@@ -66,13 +67,14 @@ void run_pair(const PairOptions& options) {
     for (const std::string& warning : placed.warnings) std::cerr << "xparam pair: warning: " << warning << "\n";
   }
   std::cout << "swaps " << mapping.optimization.swaps << "  merges " << mapping.optimization.merges << "  E_L2 "
-            << mapping.distortion.all.e_l2 << "  E_ang " << mapping.distortion.all.e_ang
+            << figure(mapping.distortion.all.e_l2) << "  E_ang " << figure(mapping.distortion.all.e_ang)
             << "  flipped faces " << mapping.quality.flipped_faces.size();
   if (!mapping.folds_by_anchor.empty()) {
     const AnchorFolds& most = mapping.folds_by_anchor.front();
     std::cout << " (" << most.folded_faces << " nearest \"" << most.name << "\")";
   }
-  std::cout << "  area ratio " << mapping.quality.area_ratio << "  (" << mapping.seconds.total << " s)\n";
+  std::cout << "  area ratio " << figure(mapping.quality.area_ratio) << "  (" << seconds_text(mapping.seconds.total)
+            << ")\n";
   for (const AnchorFolds& folds : mapping.folds_by_anchor) {
     for (const CornerMismatch& corners : mapping.mismatched_corners) {
       if (corners.anchor == folds.anchor) print_mismatch(corners);
@@ -85,7 +87,7 @@ void run_pair(const PairOptions& options) {
   }
   for (const ReleasedAnchor& anchor : mapping.released_anchors)
     std::cout << "released anchor \"" << anchor.name << "\" (" << anchor.folded_faces
-              << " folded faces near it); the map lands " << anchor.miss_distance << " from its landmark\n";
+              << " folded faces near it); the map lands " << figure(anchor.miss_distance) << " from its landmark\n";
   std::cout << "results in " << options.out << "\n";
 }
 
@@ -109,6 +111,10 @@ void add_pair_command(CLI::App& app) {
   command->add_option("--out,-o", options->out, "Output directory")->required();
   command->add_flag("--quiet,-q", options->quiet, "No progress on stderr");
   add_map_options(*command, options->map);
+  command->footer(
+      "Example: xparam pair -s tests/data/human_man.obj --source-anchors tests/data/human.anchors.json "
+      "-t tests/data/sample_targets/woman.obj --target-anchors tests/data/sample_targets/woman.anchors.json "
+      "--curves tests/data/human_man.curves.json -o pair_out");
   command->callback([options] { run_pair(*options); });
 }
 

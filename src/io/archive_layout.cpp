@@ -5,8 +5,8 @@
 namespace xparam::archive_layout {
 
 MetricsRow to_row(const TargetMetrics& m) {
-  return {m.e_l2,     m.e_ang, m.stretch_max_sv, m.flipped_faces,   m.area_ratio,
-          m.gt_error, m.swaps, m.merges,         m.released_anchors};
+  return {m.e_l2,       m.e_ang,    m.stretch_max_sv, m.flipped_faces,   m.strictly_folded_faces,
+          m.area_ratio, m.gt_error, m.swaps,          m.merges,          m.released_anchors};
 }
 
 TargetMetrics from_row(const MetricsRow& r) {
@@ -15,6 +15,7 @@ TargetMetrics from_row(const MetricsRow& r) {
   m.e_ang = r.e_ang;
   m.stretch_max_sv = r.stretch_max_sv;
   m.flipped_faces = r.flipped_faces;
+  m.strictly_folded_faces = r.strictly_folded_faces;
   m.area_ratio = r.area_ratio;
   m.gt_error = r.gt_error;
   m.swaps = r.swaps;
@@ -35,6 +36,7 @@ h5::Handle metrics_type(bool packed) {
   insert("E_ang", offsetof(MetricsRow, e_ang), f64);
   insert("stretch_max_sv", offsetof(MetricsRow, stretch_max_sv), f64);
   insert("flipped_faces", offsetof(MetricsRow, flipped_faces), i32);
+  insert("strictly_folded_faces", offsetof(MetricsRow, strictly_folded_faces), i32);
   insert("area_ratio", offsetof(MetricsRow, area_ratio), f64);
   insert("gt_error", offsetof(MetricsRow, gt_error), f64);
   insert("swaps", offsetof(MetricsRow, swaps), i32);
@@ -50,6 +52,8 @@ h5::Handle status_type() {
   const std::int8_t ok = 1;
   h5::check(H5Tenum_insert(type.get(), "failed", &failed), "status type", "failed");
   h5::check(H5Tenum_insert(type.get(), "ok", &ok), "status type", "ok");
+  const std::int8_t suspect = 2;
+  h5::check(H5Tenum_insert(type.get(), "suspect", &suspect), "status type", "suspect");
   return type;
 }
 

@@ -21,6 +21,7 @@ struct MetricsRow {
   double e_ang;
   double stretch_max_sv;
   std::int32_t flipped_faces;
+  std::int32_t strictly_folded_faces;
   double area_ratio;
   double gt_error;
   std::int32_t swaps;
@@ -35,7 +36,7 @@ TargetMetrics from_row(const MetricsRow& row);
 /// Compound type of /targets/metrics: `packed` for the file, native layout of MetricsRow for memory.
 h5::Handle metrics_type(bool packed);
 
-/// Enum type of /targets/status: failed = 0, ok = 1 (8-bit).
+/// Enum type of /targets/status: failed = 0, ok = 1, suspect = 2 (8-bit).
 h5::Handle status_type();
 
 }  // namespace xparam::archive_layout

@@ -55,6 +55,7 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
   const h5::Handle targets = h5::open_group(file, "targets");
   const std::vector<std::string> names = h5::read_strings(targets.get(), "name");
   const std::vector<std::string> errors = h5::read_strings(targets.get(), "error");
+  const std::vector<std::string> diagnoses = h5::read_strings(targets.get(), "diagnosis");
   const std::vector<std::string> mesh_files = h5::read_strings(targets.get(), "mesh_file");
   const std::vector<std::string> anchors_files = h5::read_strings(targets.get(), "anchors_file");
   const std::vector<std::string> mesh_sha256 = h5::read_strings(targets.get(), "mesh_sha256");
@@ -78,14 +79,16 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
   const std::vector<double> timings = h5::read_rows<double>(timings_dataset.get(), 0, n);
 
   for (const std::vector<std::string>* column :
-       {&errors, &mesh_files, &anchors_files, &mesh_sha256, &anchors_sha256})
+       {&errors, &diagnoses, &mesh_files, &anchors_files, &mesh_sha256, &anchors_sha256})
     if (column->size() != n) throw ArchiveError(path.string() + ": /targets string columns differ in length");
   targets_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     ArchiveTargetSummary& t = targets_[i];
     t.name = names[i];
-    t.ok = status[i] == 1;
+    t.ok = status[i] != 0;
+    t.suspect = status[i] == 2;
     t.error = errors[i];
+    t.diagnosis = diagnoses[i];
     t.mesh_file = mesh_files[i];
     t.anchors_file = anchors_files[i];
     t.mesh_sha256 = mesh_sha256[i];
@@ -152,7 +155,9 @@ TargetRecord ArchiveReader::read_target(std::size_t row) const {
   TargetRecord t;
   t.name = s.name;
   t.ok = s.ok;
+  t.suspect = s.suspect;
   t.error = s.error;
+  t.diagnosis = s.diagnosis;
   t.mesh_file = s.mesh_file;
   t.anchors_file = s.anchors_file;
   t.mesh_sha256 = s.mesh_sha256;

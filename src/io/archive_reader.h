@@ -20,8 +20,10 @@ namespace xparam {
 /// The small columns of one target: everything but its arrays.
 struct ArchiveTargetSummary {
   std::string name;            ///< target name
-  bool ok = false;             ///< status
+  bool ok = false;             ///< status: ok or suspect (the pipeline finished)
+  bool suspect = false;        ///< status suspect: ok, but a quality limit failed
   std::string error;           ///< error text, empty when ok
+  std::string diagnosis;       ///< the diagnosis JSON, empty when failed
   std::string mesh_file;       ///< input mesh file
   std::string anchors_file;    ///< input anchor file
   std::string mesh_sha256;     ///< SHA-256 of the mesh file

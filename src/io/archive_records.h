@@ -19,7 +19,7 @@ namespace xparam {
 
 /// Version of the archive layout, stored as the root attribute `schema_version`.
 /// Bump it whenever a dataset is added, removed, renamed or changes meaning.
-inline constexpr int kArchiveSchemaVersion = 2;  // 2: released anchors
+inline constexpr int kArchiveSchemaVersion = 3;  // 2: released anchors; 3: suspect, diagnosis, strict folds
 
 /// The stages whose wall-clock seconds are recorded per target, in column order of
 /// /targets/timings.
@@ -66,6 +66,9 @@ struct TargetMetrics {
   double e_ang = kNaN;           ///< global angle distortion (paper eq. 3)
   double stretch_max_sv = kNaN;  ///< mean over template faces of max(sigma1, 1 / sigma2) of the face's map
   int flipped_faces = -1;        ///< remesh faces whose normal opposes the target's
+  /// remesh faces folded by the strict count (RemeshQualityResult::strictly_folded_faces): the
+  /// count the quality verdict uses (batch/target_verdict.h)
+  int strictly_folded_faces = -1;
   double area_ratio = kNaN;      ///< remesh area / target area
   double gt_error = kNaN;        ///< mean distance to the ground-truth correspondence; NaN when none given
   int swaps = -1;                ///< boundary swaps performed (paper section 4)
@@ -78,7 +81,12 @@ struct TargetMetrics {
 struct TargetRecord {
   std::string name;            ///< unique target name (sort key of the archive)
   bool ok = false;             ///< the pipeline finished for this target
+  /// The map is a bijection but fails a quality limit (batch/target_verdict.h); only when ok.
+  bool suspect = false;
   std::string error;           ///< what went wrong when !ok; empty when ok
+  /// The verdict's reasons and what `xparam pair` prints about the map, as one JSON object
+  /// (schemas/target.schema.json, $defs/diagnosis); empty when !ok.
+  std::string diagnosis;
   std::string mesh_file;       ///< target mesh file (as given)
   std::string anchors_file;    ///< target anchor file
   std::string mesh_sha256;     ///< SHA-256 (hex) of mesh_file's bytes, empty when unreadable

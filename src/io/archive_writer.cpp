@@ -115,6 +115,7 @@ class TargetTables {
   void write(hsize_t row, const TargetRecord& target) {
     names_.push_back(target.name);
     errors_.push_back(target.error);
+    diagnoses_.push_back(target.diagnosis);
     mesh_files_.push_back(target.mesh_file);
     anchors_files_.push_back(target.anchors_file);
     mesh_sha256_.push_back(target.mesh_sha256);
@@ -124,7 +125,7 @@ class TargetTables {
     const h5::Handle metrics_memory_type = archive_layout::metrics_type(false);
     h5::write_rows(metrics_.get(), metrics_memory_type.get(), row, 1, &metrics);
     h5::write_rows(timings_.get(), row, 1, target.seconds.data());
-    const std::int8_t status = target.ok ? 1 : 0;
+    const std::int8_t status = !target.ok ? 0 : target.suspect ? 2 : 1;
     const h5::Handle status_memory_type = archive_layout::status_type();
     h5::write_rows(status_.get(), status_memory_type.get(), row, 1, &status);
 
@@ -159,6 +160,7 @@ class TargetTables {
   void finish() {
     h5::write_strings(group_.get(), "name", names_);
     h5::write_strings(group_.get(), "error", errors_);
+    h5::write_strings(group_.get(), "diagnosis", diagnoses_);
     h5::write_strings(group_.get(), "mesh_file", mesh_files_);
     h5::write_strings(group_.get(), "anchors_file", anchors_files_);
     h5::write_strings(group_.get(), "mesh_sha256", mesh_sha256_);
@@ -224,7 +226,7 @@ class TargetTables {
   h5::Handle metrics_, timings_, status_;
   h5::Handle curves_, curve_offsets_, curve_face_, curve_bary_, curve_xyz_;
   std::int64_t curve_points_ = 0;
-  std::vector<std::string> names_, errors_, mesh_files_, anchors_files_, mesh_sha256_, anchors_sha256_;
+  std::vector<std::string> names_, errors_, diagnoses_, mesh_files_, anchors_files_, mesh_sha256_, anchors_sha256_;
 };
 
 void check_unique(const std::vector<std::string>& names, const std::string& where) {
@@ -270,6 +272,7 @@ void validate_target_record(const ArchiveShape& shape, const TargetRecord& targe
   require(!target.name.empty(), "target", "empty name");
   if (!target.ok) {
     require(!target.error.empty(), where, "failed without an error text");
+    require(!target.suspect, where, "failed and suspect at once");
     return;
   }
   const auto expect = [&](Eigen::Index rows, Eigen::Index wanted, const char* array, const char* unit) {

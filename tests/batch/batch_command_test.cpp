@@ -17,22 +17,9 @@ namespace {
 using test::fs::path;
 using test::quoted;
 
-std::string template_options() {
-  return " --template " + quoted(test::data_path("human_man.obj")) + " --template-anchors " +
-         quoted(test::data_path("human.anchors.json")) + " --curves " +
-         quoted(test::data_path("human_man.curves.json"));
-}
-
-// The map without its optimization on the target nor the map through protrusion tips, for the
-// tests of exit codes and the archive's bookkeeping: a few times faster, and what they check does
-// not depend on the map.
-const char* const kQuick = " --no-optimize-map --no-extremity-anchors";
-
-// `xparam batch ARGS` with stdout and stderr sent to files in `dir`; returns the exit status.
-int batch(const path& dir, const std::string& arguments) {
-  return test::run_status(quoted(test::xparam_binary()) + " batch" + arguments + " > " + quoted(dir / "stdout.txt") +
-                          " 2> " + quoted(dir / "stderr.txt"));
-}
+using test::batch;
+using test::kQuick;
+using test::template_options;
 
 std::string python_or_skip() {
   const std::string python = test::python_with_h5py();
@@ -79,7 +66,7 @@ TEST(BatchCommand, FailuresExitTwoAndAreReadBackByH5py) {
   EXPECT_TRUE(summary["targets"][0]["metrics"]["gt_error"].is_number());
   EXPECT_EQ(summary["targets"][3]["name"], "torus");
   EXPECT_EQ(summary["targets"][3]["status"], "failed");
-  EXPECT_TRUE(summary["targets"][3]["metrics"]["e_l2"].is_null());
+  EXPECT_TRUE(summary["targets"][3]["metrics"]["E_L2"].is_null());
 
   const nlohmann::json expected = {
       {"targets",
@@ -98,6 +85,60 @@ TEST(BatchCommand, FailuresExitTwoAndAreReadBackByH5py) {
                              quoted(dir / "expected.json")),
             0);
   EXPECT_EQ(test::run_status(python + " " + quoted(test::read_back_script()) + " --open " + quoted(dir / "out.h5")), 0);
+}
+
+// The woman's anchors with LEFT_NIPPLE and RIGHT_NIPPLE traded: a left/right mix-up in a
+// landmark file.
+void add_swapped_woman(const path& dir) {
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(test::sample_targets() / "woman.obj", dir / "swapped.obj");
+  std::string anchors = test::read_file(test::sample_targets() / "woman.anchors.json");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const std::size_t at = anchors.find("\"" + from + "\"");
+    ASSERT_NE(at, std::string::npos) << from;
+    anchors.replace(at, from.size() + 2, "\"" + to + "\"");
+  };
+  replace("LEFT_NIPPLE", "SWAP_PLACEHOLDER");
+  replace("RIGHT_NIPPLE", "LEFT_NIPPLE");
+  replace("SWAP_PLACEHOLDER", "RIGHT_NIPPLE");
+  test::write_file(dir / "swapped.anchors.json", anchors);
+}
+
+TEST(BatchCommand, SwappedLandmarksMakeTheTargetSuspectAndFailOnSuspectExitsTwo) {
+  const path dir = test::fresh_temp_dir("command_suspect");
+  add_swapped_woman(dir / "targets");
+  // One map without relaxation: the swap is found from the landmarks, whatever the map.
+  const std::string run = template_options() + kQuick + " --max-maps 1 --no-relax --targets " + quoted(dir / "targets") + " --out " +
+                          quoted(dir / "out.h5") + " --summary " + quoted(dir / "summary.json");
+  // Without --fail-on-suspect a suspect target is a result like any other: exit 0.
+  ASSERT_EQ(batch(dir, run), 0) << test::read_file(dir / "stderr.txt");
+  const std::string log = test::read_file(dir / "stderr.txt");
+  EXPECT_NE(log.find("] suspect swapped "), std::string::npos) << log;
+  EXPECT_NE(log.find("1 target: 0 ok, 1 suspect, 0 failed"), std::string::npos) << log;
+
+  const nlohmann::json summary = nlohmann::json::parse(test::read_file(dir / "summary.json"));
+  EXPECT_EQ(summary["suspect"], 1);
+  EXPECT_EQ(summary["succeeded"], 1);
+  ASSERT_EQ(summary["targets"].size(), 1u);
+  EXPECT_EQ(summary["targets"][0]["status"], "suspect");
+  bool named = false;
+  for (const auto& reason : summary["targets"][0]["reasons"]) {
+    const std::string text = reason.get<std::string>();
+    named = named || (text.find("\"LEFT_NIPPLE\"") != std::string::npos &&
+                      text.find("\"RIGHT_NIPPLE\"") != std::string::npos && text.find("swapped") != std::string::npos);
+  }
+  EXPECT_TRUE(named) << summary["targets"][0]["reasons"].dump();
+
+  // The archive keeps the verdict and the diagnosis: inspect --target names the pair.
+  ASSERT_EQ(test::run_status(quoted(test::xparam_binary()) + " inspect " + quoted(dir / "out.h5") +
+                             " --target swapped > " + quoted(dir / "inspect.txt")),
+            0);
+  const std::string inspect = test::read_file(dir / "inspect.txt");
+  EXPECT_NE(inspect.find("swapped: suspect"), std::string::npos) << inspect;
+  EXPECT_NE(inspect.find("look swapped on the target"), std::string::npos) << inspect;
+
+  // --fail-on-suspect: exit 2 for scripts, also for a suspect target kept by --resume.
+  EXPECT_EQ(batch(dir, run + " --resume --fail-on-suspect"), 2) << test::read_file(dir / "stderr.txt");
 }
 
 TEST(BatchCommand, ConfigFileGivesOptionsAndTheCommandLineWins) {
@@ -200,7 +241,9 @@ TEST(BatchCommand, ParallelAndSlurmScriptsMergeIntoOneRunsDatasets) {
   ASSERT_EQ(batch(dir, template_options() + kQuick + targets + " -j 2 --out " + quoted(dir / "single.h5")), 2);
 
   const std::string env = "XPARAM=" + quoted(test::xparam_binary()) + " ";
-  EXPECT_EQ(test::run_status(env + script("run_parallel.sh") + " 3 " + quoted(dir / "parallel.h5") + template_options() +
+  // The program named by --xparam (XPARAM, set wrong here, is only the fallback).
+  EXPECT_EQ(test::run_status("XPARAM=/nonexistent " + script("run_parallel.sh") + " --xparam " +
+                             quoted(test::xparam_binary()) + " 3 " + quoted(dir / "parallel.h5") + template_options() +
                              kQuick + targets + " -j 1 > " + quoted(dir / "parallel.log") + " 2>&1"),
             2)
       << test::read_file(dir / "parallel.log");

@@ -32,7 +32,7 @@ inline fs::path sample_targets() { return data_path("sample_targets"); }
 
 // The template of the README's main command: the SMPL man with its landmarks and curves.
 inline TemplateInputs man_template() {
-  return {data_path("human_man.obj"), data_path("human.anchors.json"), data_path("human_man.curves.json")};
+  return {data_path("human_man.obj"), data_path("human.anchors.json"), data_path("human_man.curves.json"), {}};
 }
 
 inline std::string read_file(const fs::path& path) {
@@ -160,6 +160,23 @@ inline pid_t spawn_batch(const std::vector<std::string>& arguments, const fs::pa
   EXPECT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data()), 0);
   posix_spawn_file_actions_destroy(&actions);
   return pid;
+}
+
+// The options of the README's main command: the SMPL man with its landmarks and curves.
+inline std::string template_options() {
+  return " --template " + quoted(data_path("human_man.obj")) + " --template-anchors " +
+         quoted(data_path("human.anchors.json")) + " --curves " + quoted(data_path("human_man.curves.json"));
+}
+
+// The map without its optimization on the target nor the map through protrusion tips, for the
+// tests of exit codes and the archive's bookkeeping: a few times faster, and what they check does
+// not depend on the map.
+inline constexpr const char* kQuick = " --no-optimize-map --no-extremity-anchors";
+
+// `xparam batch ARGS` with stdout and stderr sent to files in `dir`; returns the exit status.
+inline int batch(const fs::path& dir, const std::string& arguments) {
+  return run_status(quoted(xparam_binary()) + " batch" + arguments + " > " + quoted(dir / "stdout.txt") + " 2> " +
+                    quoted(dir / "stderr.txt"));
 }
 
 // Wait for child `pid`; its exit status, or -signal when a signal ended it.

@@ -77,6 +77,7 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
   r.metrics.e_l2 = 1.0 + k / 7.0;
   r.metrics.e_ang = 0.25 * k;
   r.metrics.flipped_faces = k;
+  r.metrics.strictly_folded_faces = k - 1;
   r.metrics.released_anchors = k % 2;
   r.metrics.gt_error = k == 2 ? std::numeric_limits<double>::quiet_NaN() : 0.01 * k;
   r.seconds.fill(0.5 * k);
@@ -91,8 +92,15 @@ TargetRecord make_failed(const std::string& name) {
   return r;
 }
 
+// dora (k = 3) is suspect: 2 strictly folded faces, over a limit of 0.
 std::vector<TargetRecord> make_targets(const TemplateRecord& t) {
-  return {make_target(t, "bob", 1), make_failed("carl"), make_target(t, "alice", 2), make_target(t, "dora", 3)};
+  TargetRecord dora = make_target(t, "dora", 3);
+  dora.suspect = true;
+  dora.diagnosis =
+      R"json({"reasons":["2 folded faces by the strict count (limit 0), most nearest \"b\" (2)"],)json"
+      R"json("folds_by_anchor":[{"anchor":"b","folded_faces":2}],"disagreeing_corners":[],)json"
+      R"json("swapped_anchors":[["a","c"]],"released_anchors":[],"helper_anchors":[],"warnings":[]})json";
+  return {make_target(t, "bob", 1), make_failed("carl"), make_target(t, "alice", 2), dora};
 }
 
 ArchiveProvenance provenance() { return current_provenance(R"({"metric":"SDL"})"); }
@@ -112,8 +120,8 @@ TEST(InspectCommand, ListsEveryTargetWithStatusMetricsAndError) {
   const CommandRun run = run_xparam("inspect " + (dir / "run.h5").string(), dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.out.find("6 vertices, 8 faces, 3 anchors, 0 curves"), std::string::npos) << run.out;
-  EXPECT_NE(run.out.find("4 targets: 3 ok, 1 failed"), std::string::npos) << run.out;
-  // Rows in name order; bob has E_L2 = 1 + 1/7 printed with 6 significant digits.
+  EXPECT_NE(run.out.find("4 targets: 2 ok, 1 suspect, 1 failed"), std::string::npos) << run.out;
+  // Rows in name order; bob has E_L2 = 1 + 1/7 printed with 3 significant digits.
   const std::size_t alice = run.out.find("\nalice ");
   const std::size_t bob = run.out.find("\nbob ");
   const std::size_t carl = run.out.find("\ncarl ");
@@ -124,10 +132,46 @@ TEST(InspectCommand, ListsEveryTargetWithStatusMetricsAndError) {
   EXPECT_LT(bob, carl);
   const std::string bob_line = run.out.substr(bob + 1, run.out.find('\n', bob + 1) - bob - 1);
   EXPECT_NE(bob_line.find(" ok "), std::string::npos) << bob_line;
-  EXPECT_NE(bob_line.find("1.14286"), std::string::npos) << bob_line;
+  EXPECT_NE(bob_line.find(" 1.14 "), std::string::npos) << bob_line;
+  EXPECT_EQ(bob_line.find("1.142"), std::string::npos) << bob_line;
   const std::string carl_line = run.out.substr(carl + 1, run.out.find('\n', carl + 1) - carl - 1);
   EXPECT_NE(carl_line.find("failed"), std::string::npos) << carl_line;
   EXPECT_NE(carl_line.find("carl.ply: genus 1, the template has genus 0"), std::string::npos) << carl_line;
+  const std::size_t dora = run.out.find("\ndora ");
+  ASSERT_NE(dora, std::string::npos);
+  const std::string dora_line = run.out.substr(dora + 1, run.out.find('\n', dora + 1) - dora - 1);
+  EXPECT_NE(dora_line.find(" suspect "), std::string::npos) << dora_line;
+  EXPECT_NE(dora_line.find("2 folded faces by the strict count"), std::string::npos) << dora_line;
+  fs::remove_all(dir);
+}
+
+TEST(InspectCommand, TargetShowsItsDiagnosisAndAnUnknownNameIsAUsageError) {
+  const fs::path dir = test::fresh_temp_dir("cli_inspect_target");
+  const TemplateRecord t = make_template();
+  write_archive(dir / "run.h5", t, provenance(), make_targets(t));
+  const std::string archive = (dir / "run.h5").string();
+
+  CommandRun run = run_xparam("inspect " + archive + " --target dora", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("dora: suspect"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("suspect: 2 folded faces by the strict count (limit 0)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("folded faces by nearest anchor: \"b\" 2"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("landmarks \"a\" and \"c\" look swapped"), std::string::npos) << run.out;
+
+  run = run_xparam("inspect --json " + archive + " --target dora", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["status"], "suspect");
+  EXPECT_EQ(j["metrics"]["strictly_folded_faces"], 2);
+  EXPECT_EQ(j["diagnosis"]["swapped_anchors"][0][1], "c");
+
+  run = run_xparam("inspect " + archive + " --target carl", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("error: carl.ply: genus 1"), std::string::npos) << run.out;
+
+  run = run_xparam("inspect " + archive + " --target nobody", dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("no target \"nobody\""), std::string::npos) << run.err;
   fs::remove_all(dir);
 }
 
@@ -141,14 +185,16 @@ TEST(InspectCommand, JsonCarriesTheExactValues) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["options"]["metric"], "SDL");
-  EXPECT_EQ(j["ok"], 3);
+  EXPECT_EQ(j["succeeded"], 3);
+  EXPECT_EQ(j["suspect"], 1);
   EXPECT_EQ(j["failed"], 1);
+  EXPECT_EQ(j["targets"][3]["status"], "suspect");
   ASSERT_EQ(j["targets"].size(), 4u);
   EXPECT_EQ(j["targets"][0]["name"], "alice");
   EXPECT_EQ(j["targets"][1]["metrics"]["E_L2"].get<double>(), 1.0 + 1 / 7.0);  // bob, bit-exact
   EXPECT_TRUE(j["targets"][0]["metrics"]["gt_error"].is_null());               // alice has no ground truth
   EXPECT_EQ(j["targets"][1]["metrics"]["released_anchors"], 1);                // bob, k = 1
-  EXPECT_EQ(j["targets"][2]["metrics"]["released_anchors"], -1);               // carl failed
+  EXPECT_TRUE(j["targets"][2]["metrics"]["released_anchors"].is_null());      // carl failed
   EXPECT_EQ(j["targets"][2]["status"], "failed");
   EXPECT_EQ(j["targets"][2]["error"], "carl.ply: genus 1, the template has genus 0");
   EXPECT_EQ(j["targets"][3]["seconds"]["total"].get<double>(), 1.5);
@@ -187,12 +233,14 @@ TEST(ExportCommand, FailedOrUnknownTargetsAndFormatsAreErrors) {
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("genus 1"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(dir / "carl.obj"));
+  // What the user typed wrongly is a usage error (exit 1), naming what the archive holds.
   run = run_xparam("export " + archive + " --target nobody --out " + (dir / "x.obj").string(), dir);
-  EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.err.find("no target named 'nobody'"), std::string::npos) << run.err;
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("no target \"nobody\"; it holds alice, bob, carl, dora"), std::string::npos) << run.err;
   run = run_xparam("export " + archive + " --target bob --out " + (dir / "x.stl").string(), dir);
-  EXPECT_NE(run.exit_code, 0);
+  EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("x.stl"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "x.stl"));
   fs::remove_all(dir);
 }
 

@@ -19,8 +19,8 @@ import h5py
 import numpy as np
 
 STAGES = ["load", "anchors", "layout", "optimize", "parameterize", "compose", "outputs", "total"]
-METRICS = ["E_L2", "E_ang", "stretch_max_sv", "flipped_faces", "area_ratio", "gt_error", "swaps", "merges",
-           "released_anchors"]
+METRICS = ["E_L2", "E_ang", "stretch_max_sv", "flipped_faces", "strictly_folded_faces", "area_ratio", "gt_error",
+           "swaps", "merges", "released_anchors"]
 # Wall-clock seconds are the one dataset that differs between identical runs.
 NON_DETERMINISTIC = {"/targets/timings"}
 
@@ -47,7 +47,7 @@ def check_layout(path):
     """Opens the archive, reads every dataset, checks shapes and invariants; returns the file."""
     f = h5py.File(path, "r")
     require(attr_text(f, "format") == "xparam-archive", "format attribute")
-    require(int(f.attrs["schema_version"]) == 2, "schema_version")
+    require(int(f.attrs["schema_version"]) == 3, "schema_version")
     for name in ("xparam_version", "git_revision", "options_json"):
         attr_text(f, name)
     json.loads(attr_text(f, "options_json"))
@@ -71,11 +71,11 @@ def check_layout(path):
     names = strings(t["name"])
     n = len(names)
     require(all(a < b for a, b in zip(names, names[1:])), "targets sorted by name (byte order) and unique")
-    for column in ("error", "mesh_file", "anchors_file", "mesh_sha256", "anchors_sha256"):
+    for column in ("error", "diagnosis", "mesh_file", "anchors_file", "mesh_sha256", "anchors_sha256"):
         require(len(strings(t[column])) == n, column + " length")
     status_dtype = h5py.check_enum_dtype(t["status"].dtype)
-    require(status_dtype == {"failed": 0, "ok": 1}, "status enum")
-    ok = t["status"][()] == 1
+    require(status_dtype == {"failed": 0, "ok": 1, "suspect": 2}, "status enum")
+    ok = t["status"][()] != 0  # ok or suspect: the map exists
     shapes = {"remesh_vertices": (n, n_v, 3), "corr_face": (n, n_v), "corr_bary": (n, n_v, 3),
               "face_patch": (n, n_f), "face_l2_stretch": (n, n_f), "face_angle_distortion": (n, n_f)}
     for name, shape in shapes.items():
@@ -183,7 +183,9 @@ def check_values(f, expected):
     for i, e in enumerate(expected["targets"]):
         where = "target " + e["name"] + ": "
         require(bool(status[i]) == e["ok"], where + "status")
-        for column in ("error", "mesh_file", "anchors_file", "mesh_sha256", "anchors_sha256"):
+        if "status" in e:
+            require(int(status[i]) == e["status"], where + "status value")
+        for column in ("error", "diagnosis", "mesh_file", "anchors_file", "mesh_sha256", "anchors_sha256"):
             require(strings(t[column])[i] == e[column], where + column)
         for column in METRICS:
             require(close(metrics[column][i], nan_of(e["metrics"][column])), where + "metric " + column)

@@ -115,12 +115,17 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
   r.metrics.e_ang = 2.0 + k;
   r.metrics.stretch_max_sv = 3.0 + k;
   r.metrics.flipped_faces = k;
+  r.metrics.strictly_folded_faces = k / 2;
   r.metrics.area_ratio = 1.0 - 0.01 * k;
   r.metrics.gt_error = k % 2 ? kNaN : 0.1 * k;
   r.metrics.swaps = 2 * k;
   r.metrics.merges = k % 3;
   r.metrics.released_anchors = k % 2;
   for (std::size_t s = 0; s < r.seconds.size(); ++s) r.seconds[s] = 0.1 * static_cast<double>(s) + k;
+  // Every other target is suspect, with a diagnosis in UTF-8 (a landmark name with an accent).
+  r.suspect = k % 2 == 1;
+  r.diagnosis = R"({"reasons":[)" + std::string(r.suspect ? R"j("E_L2 12 (limit 10)")j" : "") +
+                R"(],"folds_by_anchor":[{"anchor":"Épaule","folded_faces":)" + std::to_string(k) + "}]}";
   return r;
 }
 
@@ -209,7 +214,9 @@ nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
   for (const TargetRecord& r : sorted_by_name(std::move(targets))) {
     nlohmann::json j = {{"name", r.name},
                         {"ok", r.ok},
+                        {"status", !r.ok ? 0 : r.suspect ? 2 : 1},
                         {"error", r.error},
+                        {"diagnosis", r.diagnosis},
                         {"mesh_file", r.mesh_file},
                         {"anchors_file", r.anchors_file},
                         {"mesh_sha256", r.mesh_sha256},
@@ -219,6 +226,7 @@ nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
                           {"E_ang", r.metrics.e_ang},
                           {"stretch_max_sv", r.metrics.stretch_max_sv},
                           {"flipped_faces", r.metrics.flipped_faces},
+                          {"strictly_folded_faces", r.metrics.strictly_folded_faces},
                           {"area_ratio", r.metrics.area_ratio},
                           {"gt_error", r.metrics.gt_error},
                           {"swaps", r.metrics.swaps},

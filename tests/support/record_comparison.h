@@ -33,7 +33,9 @@ inline void expect_same_results(const TargetRecord& a, const TargetRecord& b) {
   SCOPED_TRACE(a.name);
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.ok, b.ok);
+  EXPECT_EQ(a.suspect, b.suspect);
   EXPECT_EQ(a.error, b.error);
+  EXPECT_EQ(a.diagnosis, b.diagnosis);
   EXPECT_EQ(a.mesh_file, b.mesh_file);
   EXPECT_EQ(a.anchors_file, b.anchors_file);
   EXPECT_EQ(a.mesh_sha256, b.mesh_sha256);
@@ -55,6 +57,7 @@ inline void expect_same_results(const TargetRecord& a, const TargetRecord& b) {
   EXPECT_TRUE(same_bits(a.metrics.e_ang, b.metrics.e_ang));
   EXPECT_TRUE(same_bits(a.metrics.stretch_max_sv, b.metrics.stretch_max_sv));
   EXPECT_EQ(a.metrics.flipped_faces, b.metrics.flipped_faces);
+  EXPECT_EQ(a.metrics.strictly_folded_faces, b.metrics.strictly_folded_faces);
   EXPECT_TRUE(same_bits(a.metrics.area_ratio, b.metrics.area_ratio));
   EXPECT_TRUE(same_bits(a.metrics.gt_error, b.metrics.gt_error));
   EXPECT_EQ(a.metrics.swaps, b.metrics.swaps);
