@@ -13,6 +13,7 @@
 #include "batch/target_discovery.h"
 #include "batch/template_preparation.h"
 #include "io/archive_records.h"
+#include "intake/scan_intake.h"
 #include "map/pair_mapping.h"
 
 #include <string>
@@ -21,12 +22,14 @@ namespace xparam {
 
 /// Run the whole pipeline for `target` against `prepared` and return its record (ok or failed).
 /// Thread-safe: jobs for different targets may run at once on the same template.
+/// The target mesh goes through the scan intake (`intake`; intake/scan_loader.h) first.
 TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& target,
-                        const PairSettings& settings = {});
+                        const PairSettings& settings = {}, const IntakeSettings& intake = {});
 
 /// Check `target`'s inputs without mapping (what --dry-run does): the mesh loads and is usable,
 /// the anchors read and carry exactly the template's names, the genus equals the template's,
 /// the ground truth (when given) reads and fits. Returns the problem, empty when none.
-std::string check_target(const PreparedTemplate& prepared, const TargetSpec& target);
+std::string check_target(const PreparedTemplate& prepared, const TargetSpec& target,
+                         const IntakeSettings& intake = {});
 
 }  // namespace xparam

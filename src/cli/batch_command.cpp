@@ -1,5 +1,6 @@
 // `xparam batch`: one template against a folder (or manifest) of targets, into one archive.
 #include "cli/commands.h"
+#include "cli/intake_options.h"
 #include "cli/map_options.h"
 #include "cli/stop_signals.h"
 
@@ -47,6 +48,7 @@ struct BatchOptions {
   bool keep_parts = false;
   double checkpoint_seconds = 30.0;
   PairSettings map;  ///< --optimize, --merge, --no-stretch, --keep-corners, --second-layout, --untangle, --release-anchors
+  IntakeSettings intake;  ///< --intake, --max-dropped-area, --max-hole
 };
 
 [[noreturn]] void exit_with(int code, const std::string& message) {
@@ -144,7 +146,7 @@ class ProgressPrinter {
 
 int run_dry(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchOptions& options) {
   print_plan(plan, options, std::cout);
-  const std::vector<TargetOutcome> checked = check_batch(prepared, plan, options.threads);
+  const std::vector<TargetOutcome> checked = check_batch(prepared, plan, options.threads, options.intake);
   std::size_t problems = 0;
   for (const TargetOutcome& outcome : checked) {
     std::cout << "  check " << outcome.name << ": " << (outcome.ok ? "ok" : "FAILS: " + outcome.error) << "\n";
@@ -216,7 +218,7 @@ int run_command(const BatchOptions& options) {
     const std::map<std::string, ArchiveTargetSummary> committed =
         options.resume ? committed_targets(options.out) : std::map<std::string, ArchiveTargetSummary>{};
     const BatchPlan plan =
-        plan_batch(discovered, shard, committed, options.retry_failed, batch_options_json(options.map));
+        plan_batch(discovered, shard, committed, options.retry_failed, batch_options_json(options.map, options.intake));
     if (options.dry_run) return run_dry(prepared, plan, options);
 
     print_plan(plan, options, std::cerr);
@@ -228,6 +230,7 @@ int run_command(const BatchOptions& options) {
     settings.keep_parts = options.keep_parts;
     settings.checkpoint_seconds = options.checkpoint_seconds;
     settings.pair = options.map;
+    settings.intake = options.intake;
     settings.stop = &signals.requested();
     ProgressPrinter printer;
     const BatchSummary summary = run_batch(prepared, plan, settings, [&](const BatchProgress& p) { printer(p); });
@@ -286,6 +289,7 @@ void add_batch_command(CLI::App& app) {
   batch->add_flag("--dry-run", options->dry_run, "Check every input and print the plan; write nothing");
   batch->add_option("--summary", options->summary, "Write a JSON summary (schemas/summary.schema.json)");
   add_map_options(*batch, options->map);
+  add_intake_options(*batch, options->intake);
   batch->add_flag("--keep-parts", options->keep_parts, "Keep OUT.parts after the final assembly");
   batch->add_option("--checkpoint-seconds", options->checkpoint_seconds,
                     "Re-assemble OUT from the committed targets at most this often while running (s)")

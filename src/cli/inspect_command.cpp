@@ -60,7 +60,13 @@ nlohmann::json target_json(const ArchiveTargetSummary& t) {
             {"gt_error", m.gt_error},
             {"swaps", m.swaps},
             {"merges", m.merges},
-            {"released_anchors", m.released_anchors}}},
+            {"released_anchors", m.released_anchors},
+            {"dropped_faces", m.dropped_faces},
+            {"dropped_area", m.dropped_area},
+            {"holes_filled", m.holes_filled},
+            {"filled_area", m.filled_area},
+            {"on_filled_vertices", m.on_filled_vertices},
+            {"max_distance_to_scan", m.max_distance_to_scan}}},
           {"seconds", seconds}};
 }
 

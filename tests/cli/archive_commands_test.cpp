@@ -78,6 +78,12 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
   r.metrics.e_ang = 0.25 * k;
   r.metrics.flipped_faces = k;
   r.metrics.released_anchors = k % 2;
+  r.metrics.dropped_faces = 4 * k;
+  r.metrics.dropped_area = 0.01 * k;
+  r.metrics.holes_filled = k % 3;
+  r.metrics.filled_area = 0.02 * k;
+  r.metrics.on_filled_vertices = 5 * k;
+  r.metrics.max_distance_to_scan = 0.001 * k;
   r.metrics.gt_error = k == 2 ? std::numeric_limits<double>::quiet_NaN() : 0.01 * k;
   r.seconds.fill(0.5 * k);
   return r;

@@ -20,7 +20,8 @@ import numpy as np
 
 STAGES = ["load", "anchors", "layout", "optimize", "parameterize", "compose", "outputs", "total"]
 METRICS = ["E_L2", "E_ang", "stretch_max_sv", "flipped_faces", "area_ratio", "gt_error", "swaps", "merges",
-           "released_anchors"]
+           "released_anchors", "dropped_faces", "dropped_area", "holes_filled", "filled_area",
+           "on_filled_vertices", "max_distance_to_scan"]
 # Wall-clock seconds are the one dataset that differs between identical runs.
 NON_DETERMINISTIC = {"/targets/timings"}
 
@@ -47,7 +48,7 @@ def check_layout(path):
     """Opens the archive, reads every dataset, checks shapes and invariants; returns the file."""
     f = h5py.File(path, "r")
     require(attr_text(f, "format") == "xparam-archive", "format attribute")
-    require(int(f.attrs["schema_version"]) == 2, "schema_version")
+    require(int(f.attrs["schema_version"]) == 3, "schema_version")
     for name in ("xparam_version", "git_revision", "options_json"):
         attr_text(f, name)
     json.loads(attr_text(f, "options_json"))

@@ -56,14 +56,15 @@ TEST(PairCommand, RemeshIsTheCorrespondenceOnTheTargetWithTheTemplatesFaces) {
   std::ifstream csv(out / "correspondence.csv");
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "vertex,face,b0,b1,b2");
+  EXPECT_EQ(line, "vertex,face,b0,b1,b2,filled,distance_to_scan");
   std::size_t rows = 0;
   while (std::getline(csv, line)) {
     std::istringstream fields(line);
     std::string field;
     std::vector<double> values;
     while (std::getline(fields, field, ',')) values.push_back(std::stod(field));
-    ASSERT_EQ(values.size(), 5u) << line;
+    ASSERT_EQ(values.size(), 7u) << line;
+    EXPECT_EQ(values[5], 0.0) << line;  // a clean target: nothing filled in
     const int vertex = static_cast<int>(values[0]);
     const int face = static_cast<int>(values[1]);
     ASSERT_EQ(vertex, static_cast<int>(rows));
