@@ -137,6 +137,7 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
                                                            mapping.remesh_vertices, static_cast<int>(n_vertices));
   metrics.on_filled_vertices = filled.count;
   metrics.max_distance_to_scan = filled.max_distance;
+  metrics.file_faces = order.file_faces;
   if (target.ground_truth)
     metrics.gt_error =
         ground_truth_error(record.remesh_vertices, *target.ground_truth, file_vertex_matrix(target.loaded));

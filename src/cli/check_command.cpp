@@ -215,8 +215,11 @@ void add_check_command(CLI::App& app) {
   CLI::App* check = app.add_subcommand(
       "check", "Validate mesh files (OBJ, PLY, OFF, STL): counts, topology, genus, defects. Faces wound "
                "against their neighbours are re-oriented and pinched vertices split, as the loader does "
-               "(listed as repairs). Exit status 0 when every mesh is usable (closed, one component, "
-               "2-manifold edges, orientable, no degenerate faces), 2 otherwise.");
+               "(listed as repairs). A mesh that is still not usable (holes, loose parts, duplicated faces, "
+               "non-manifold bits) is shown with what the scan intake would do to it as a target, and whether "
+               "the result is usable (--intake strict: not tried). Exit status 0 when every mesh is usable "
+               "(closed, one component, 2-manifold edges, orientable, no degenerate faces; as it is or after "
+               "the intake), 2 otherwise.");
   check->add_option("meshes", options->meshes, "Mesh files to check")->required()->check(CLI::ExistingFile);
   check->add_flag("--json", options->json, "Print a JSON array with one object per file");
   check->add_flag("--no-repair", options->no_repair,

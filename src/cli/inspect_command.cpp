@@ -66,7 +66,8 @@ nlohmann::json target_json(const ArchiveTargetSummary& t) {
             {"holes_filled", m.holes_filled},
             {"filled_area", m.filled_area},
             {"on_filled_vertices", m.on_filled_vertices},
-            {"max_distance_to_scan", m.max_distance_to_scan}}},
+            {"max_distance_to_scan", m.max_distance_to_scan},
+            {"file_faces", m.file_faces}}},
           {"seconds", seconds}};
 }
 

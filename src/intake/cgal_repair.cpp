@@ -150,22 +150,72 @@ std::vector<int> triangle_components(const std::vector<Point>& points, const std
   return component;
 }
 
+namespace {
+
+// The mesh's points [0, n_points) and faces: the input's `triangles` (in their own corner order)
+// then the patches' faces up to n_faces.
+void mesh_arrays(const SurfaceMesh& mesh, const std::vector<Triangle>& triangles, std::size_t n_points,
+                 std::size_t n_faces, std::vector<Point>& points, std::vector<Triangle>& faces) {
+  points.clear();
+  points.reserve(n_points);
+  for (std::size_t v = 0; v < n_points; ++v) points.push_back(to_array(mesh.point(VertexIndex(static_cast<SurfaceMesh::size_type>(v)))));
+  faces.assign(triangles.begin(), triangles.end());
+  faces.reserve(n_faces);
+  for (std::size_t f = triangles.size(); f < n_faces; ++f) {
+    const HalfedgeIndex fh = mesh.halfedge(FaceIndex(static_cast<SurfaceMesh::size_type>(f)));
+    faces.push_back({static_cast<int>(mesh.source(fh).idx()), static_cast<int>(mesh.target(fh).idx()),
+                     static_cast<int>(mesh.target(mesh.next(fh)).idx())});
+  }
+}
+
+// Fill the hole of border halfedge `start` (faired or not) and measure the patch into `hole`.
+void fill_one(SurfaceMesh& mesh, HalfedgeIndex start, bool fair, const std::vector<FaceIndex>& around, Hole& hole) {
+  std::vector<FaceIndex> patch;
+  std::vector<VertexIndex> added;
+  if (fair) {
+    hole.faired = std::get<0>(
+        PMP::triangulate_refine_and_fair_hole(mesh, start, std::back_inserter(patch), std::back_inserter(added)));
+  } else {
+    hole.faired = false;
+    PMP::triangulate_and_refine_hole(mesh, start, std::back_inserter(patch), std::back_inserter(added));
+  }
+  hole.filled = true;
+  hole.triangles = static_cast<int>(patch.size());
+  hole.points = static_cast<int>(added.size());
+  hole.area = 0.0;
+  for (FaceIndex f : patch) {
+    XP_ASSERT_MSG(static_cast<int>(f.idx()) >= hole.first_triangle, "a fill patch reused an existing face");
+    const HalfedgeIndex fh = mesh.halfedge(f);
+    hole.area += triangle_area(mesh.point(mesh.source(fh)), mesh.point(mesh.target(fh)),
+                               mesh.point(mesh.target(mesh.next(fh))));
+  }
+  std::vector<FaceIndex> tested = patch;
+  tested.insert(tested.end(), around.begin(), around.end());
+  std::sort(tested.begin(), tested.end());
+  tested.erase(std::unique(tested.begin(), tested.end()), tested.end());
+  hole.self_intersecting = PMP::does_self_intersect(tested, mesh);
+}
+
+}  // namespace
+
 FilledSoup fill_holes(const std::vector<Point>& points, const std::vector<Triangle>& triangles,
                       const HoleFillSettings& settings) {
   SurfaceMesh mesh = build_surface_mesh(points, triangles);
   FilledSoup out;
 
-  // The border cycles first, each from its lowest-numbered border halfedge, before any fill adds
-  // halfedges (a patch closes its hole and creates no border).
-  std::vector<HalfedgeIndex> cycles;
+  // The border cycles first, each by the two ends of its lowest-numbered border halfedge (vertex
+  // numbers survive rebuilding the mesh; halfedge numbers do not).
+  std::vector<std::pair<VertexIndex, VertexIndex>> cycles;
   std::vector<bool> seen(mesh.number_of_halfedges(), false);
   for (HalfedgeIndex h : mesh.halfedges()) {
     if (!mesh.is_border(h) || seen[h.idx()]) continue;
-    cycles.push_back(h);
+    cycles.emplace_back(mesh.source(h), mesh.target(h));
     for (HalfedgeIndex g = h; !seen[g.idx()]; g = mesh.next(g)) seen[g.idx()] = true;
   }
 
-  for (HalfedgeIndex start : cycles) {
+  for (const auto& [u, v] : cycles) {
+    const HalfedgeIndex start = mesh.halfedge(u, v);
+    XP_ASSERT(start != SurfaceMesh::null_halfedge() && mesh.is_border(start));
     Hole hole;
     std::vector<FaceIndex> around;  // the faces outside the hole along its border
     HalfedgeIndex h = start;
@@ -178,39 +228,24 @@ FilledSoup fill_holes(const std::vector<Point>& points, const std::vector<Triang
     hole.first_triangle = static_cast<int>(mesh.number_of_faces());
     hole.first_point = static_cast<int>(mesh.number_of_vertices());
     if (hole.perimeter <= settings.max_perimeter) {
-      std::vector<FaceIndex> patch;
-      std::vector<VertexIndex> added;
-      hole.faired = std::get<0>(
-          PMP::triangulate_refine_and_fair_hole(mesh, start, std::back_inserter(patch), std::back_inserter(added)));
-      hole.filled = true;
-      hole.triangles = static_cast<int>(patch.size());
-      hole.points = static_cast<int>(added.size());
-      for (FaceIndex f : patch) {
-        XP_ASSERT_MSG(static_cast<int>(f.idx()) >= hole.first_triangle, "a fill patch reused an existing face");
-        const HalfedgeIndex fh = mesh.halfedge(f);
-        hole.area += triangle_area(mesh.point(mesh.source(fh)), mesh.point(mesh.target(fh)),
-                                   mesh.point(mesh.target(mesh.next(fh))));
+      fill_one(mesh, start, true, around, hole);
+      if (hole.self_intersecting) {
+        // Redo without fairing: a faired patch over a long, bent border can fold through the
+        // surface where a flat refined one does not. The mesh is rebuilt without the patch.
+        std::vector<Point> kept_points;
+        std::vector<Triangle> kept_faces;
+        mesh_arrays(mesh, triangles, static_cast<std::size_t>(hole.first_point),
+                    static_cast<std::size_t>(hole.first_triangle), kept_points, kept_faces);
+        mesh = build_surface_mesh(kept_points, kept_faces);  // `around` keeps its numbers
+        fill_one(mesh, mesh.halfedge(u, v), false, around, hole);
       }
-      std::vector<FaceIndex> tested = patch;
-      tested.insert(tested.end(), around.begin(), around.end());
-      std::sort(tested.begin(), tested.end());
-      tested.erase(std::unique(tested.begin(), tested.end()), tested.end());
-      hole.self_intersecting = PMP::does_self_intersect(tested, mesh);
     }
     out.holes.push_back(std::move(hole));
   }
 
   // Nothing was removed, so the mesh's elements are numbered in the order they were added.
   XP_ASSERT(mesh.number_of_removed_faces() == 0 && mesh.number_of_removed_vertices() == 0);
-  out.points.reserve(mesh.number_of_vertices());
-  for (VertexIndex v : mesh.vertices()) out.points.push_back(to_array(mesh.point(v)));
-  out.triangles = triangles;
-  out.triangles.reserve(mesh.number_of_faces());
-  for (std::size_t f = triangles.size(); f < mesh.number_of_faces(); ++f) {
-    const HalfedgeIndex fh = mesh.halfedge(FaceIndex(static_cast<SurfaceMesh::size_type>(f)));
-    out.triangles.push_back({static_cast<int>(mesh.source(fh).idx()), static_cast<int>(mesh.target(fh).idx()),
-                             static_cast<int>(mesh.target(mesh.next(fh)).idx())});
-  }
+  mesh_arrays(mesh, triangles, mesh.number_of_vertices(), mesh.number_of_faces(), out.points, out.triangles);
   return out;
 }
 

@@ -60,7 +60,8 @@ struct Hole {
   double perimeter = 0.0;   ///< length of the border, mesh units
   bool filled = false;      ///< false when longer than HoleFillSettings::max_perimeter
   bool faired = false;      ///< CGAL's fairing succeeded (otherwise the patch is refined but not faired)
-  /// Triangles of the patch that intersect each other or the faces around the hole.
+  /// Triangles of the patch intersect each other or the faces around the hole, even after the
+  /// redo without fairing: the caller refuses the hole.
   bool self_intersecting = false;
   int first_triangle = 0;   ///< the patch is triangles [first_triangle, first_triangle + triangles)
   int triangles = 0;
@@ -79,8 +80,9 @@ struct FilledSoup {
 
 /// Fill every hole no longer than settings.max_perimeter with CGAL PMP
 /// triangulate_refine_and_fair_hole (a patch refined to the density around it and faired to
-/// continue the surface smoothly), and test each patch with PMP self_intersections against itself
-/// and the faces around the hole. Deterministic.
+/// continue the surface smoothly), and test each patch with PMP does_self_intersect against itself
+/// and the faces around the hole; a faired patch that intersects is redone once without fairing
+/// (triangulate_and_refine_hole) and tested again. Deterministic.
 /// \pre the soup is a valid, oriented polygon mesh (repair_and_orient's output, one component)
 FilledSoup fill_holes(const std::vector<Point>& points, const std::vector<Triangle>& triangles,
                       const HoleFillSettings& settings);

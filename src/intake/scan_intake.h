@@ -68,7 +68,7 @@ struct PreparedScan {
 /// and name where a hole is. Deterministic.
 /// \throw InputError naming soup.source, the problem, its size and the fix: a landmark on a
 ///   part that would be dropped, dropped area over max_dropped_area, a hole over max_hole, a
-///   fill patch that intersects itself or the surface around it.
+///   fill patch that intersects itself or the surface around it, faired and unfaired.
 PreparedScan prepare_scan(const TriangleSoup& soup, const std::vector<IntakeLandmark>& landmarks,
                           const IntakeSettings& settings = {});
 

@@ -8,7 +8,7 @@ MetricsRow to_row(const TargetMetrics& m) {
   return {m.e_l2,          m.e_ang,        m.stretch_max_sv,     m.flipped_faces, m.area_ratio,
           m.gt_error,      m.swaps,        m.merges,             m.released_anchors,
           m.dropped_faces, m.dropped_area, m.holes_filled,       m.filled_area,   m.on_filled_vertices,
-          m.max_distance_to_scan};
+          m.max_distance_to_scan, m.file_faces};
 }
 
 TargetMetrics from_row(const MetricsRow& r) {
@@ -28,6 +28,7 @@ TargetMetrics from_row(const MetricsRow& r) {
   m.filled_area = r.filled_area;
   m.on_filled_vertices = r.on_filled_vertices;
   m.max_distance_to_scan = r.max_distance_to_scan;
+  m.file_faces = r.file_faces;
   return m;
 }
 
@@ -54,6 +55,7 @@ h5::Handle metrics_type(bool packed) {
   insert("filled_area", offsetof(MetricsRow, filled_area), f64);
   insert("on_filled_vertices", offsetof(MetricsRow, on_filled_vertices), i32);
   insert("max_distance_to_scan", offsetof(MetricsRow, max_distance_to_scan), f64);
+  insert("file_faces", offsetof(MetricsRow, file_faces), i32);
   if (packed) h5::check(H5Tpack(type.get()), "metrics type", "cannot pack");
   return type;
 }

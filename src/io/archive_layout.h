@@ -32,6 +32,7 @@ struct MetricsRow {
   double filled_area;
   std::int32_t on_filled_vertices;
   double max_distance_to_scan;
+  std::int32_t file_faces;
 };
 
 /// MetricsRow <-> TargetMetrics.

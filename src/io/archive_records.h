@@ -19,7 +19,7 @@ namespace xparam {
 
 /// Version of the archive layout, stored as the root attribute `schema_version`.
 /// Bump it whenever a dataset is added, removed, renamed or changes meaning.
-inline constexpr int kArchiveSchemaVersion = 3;  // 2: released anchors; 3: scan intake
+inline constexpr int kArchiveSchemaVersion = 3;  // 2: released anchors; 3: scan intake columns
 
 /// The stages whose wall-clock seconds are recorded per target, in column order of
 /// /targets/timings.
@@ -79,6 +79,9 @@ struct TargetMetrics {
   double filled_area = kNaN;        ///< area of the fill patches, target units squared
   int on_filled_vertices = -1;      ///< template vertices whose image lies on a fill patch
   double max_distance_to_scan = kNaN;  ///< largest distance of such an image to the scan's own faces
+  /// Faces in the target file: a corr_face at or above it is a fill face (numbered after the
+  /// file's), i.e. the template vertex's image lies on filled-in surface.
+  int file_faces = -1;
 };
 
 /// Everything the archive keeps about one target. A failed target has ok == false, an

@@ -114,7 +114,8 @@ TEST(CheckCommand, OpenMeshIsNotUsableWhenStrict) {
 }
 
 TEST(CheckCommand, OpenMeshIsUsableAfterTheIntakeFillsItsHole) {
-  const ProgramRun r = check("--json " + quoted(test::data_path("cat_head.obj")), "check_cat_head_intake");
+  // The head is open at the neck: a border of 4.4, over the default limit (a quarter of the diagonal).
+  const ProgramRun r = check("--json --max-hole 5 " + quoted(test::data_path("cat_head.obj")), "check_cat_head_intake");
   EXPECT_EQ(r.status, 0) << r.out;
   const nlohmann::json m = parse(r)[0];
   EXPECT_EQ(m["valid"], true);
@@ -124,10 +125,14 @@ TEST(CheckCommand, OpenMeshIsUsableAfterTheIntakeFillsItsHole) {
   EXPECT_EQ(m["intake"]["problems_after"].size(), 0u);
   EXPECT_EQ(m["intake"]["genus_after"], 0);
 
-  // A limit below the hole's border refuses, naming the limit and the fix.
-  const ProgramRun limited = check("--max-hole 1e-6 " + quoted(test::data_path("cat_head.obj")), "check_cat_head_max");
+  // The default limit refuses, naming the hole, the limit and the fix.
+  const ProgramRun limited = check(quoted(test::data_path("cat_head.obj")), "check_cat_head_max");
   EXPECT_EQ(limited.status, 2) << limited.out;
-  EXPECT_NE(limited.out.find("is over --max-hole 1e-06: close it in a mesh editor"), std::string::npos) << limited.out;
+  EXPECT_NE(limited.out.find("cat_head.obj: NOT usable"), std::string::npos) << limited.out;
+  EXPECT_NE(limited.out.find("hole of 4.36 perimeter is over --max-hole 0.749 (25% of the bounding-box diagonal): "
+                             "close it in a mesh editor, or raise --max-hole"),
+            std::string::npos)
+      << limited.out;
 }
 
 TEST(CheckCommand, NonManifoldEdgeIsNamed) {

@@ -126,6 +126,7 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
   r.metrics.filled_area = 0.02 * k;
   r.metrics.on_filled_vertices = 5 * k;
   r.metrics.max_distance_to_scan = 0.001 * k;
+  r.metrics.file_faces = 1000 + k;
   for (std::size_t s = 0; s < r.seconds.size(); ++s) r.seconds[s] = 0.1 * static_cast<double>(s) + k;
   return r;
 }
@@ -235,7 +236,8 @@ nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
                           {"holes_filled", r.metrics.holes_filled},
                           {"filled_area", r.metrics.filled_area},
                           {"on_filled_vertices", r.metrics.on_filled_vertices},
-                          {"max_distance_to_scan", r.metrics.max_distance_to_scan}}},
+                          {"max_distance_to_scan", r.metrics.max_distance_to_scan},
+                          {"file_faces", r.metrics.file_faces}}},
                         {"seconds", std::vector<double>(r.seconds.begin(), r.seconds.end())}};
     if (r.ok) {
       j["remesh_vertices"] = matrix_json(r.remesh_vertices);

@@ -66,6 +66,7 @@ inline void expect_same_results(const TargetRecord& a, const TargetRecord& b) {
   EXPECT_TRUE(same_bits(a.metrics.filled_area, b.metrics.filled_area));
   EXPECT_EQ(a.metrics.on_filled_vertices, b.metrics.on_filled_vertices);
   EXPECT_TRUE(same_bits(a.metrics.max_distance_to_scan, b.metrics.max_distance_to_scan));
+  EXPECT_EQ(a.metrics.file_faces, b.metrics.file_faces);
 }
 
 }  // namespace xparam::test
