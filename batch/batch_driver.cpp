@@ -145,8 +145,12 @@ double BatchSummary::targets_per_second() const {
   return ran > 0 && seconds > 0.0 ? static_cast<double>(ran) / seconds : 0.0;
 }
 
-std::string batch_options_json(const PairSettings& settings, const QualityLimits& limits) {
+std::string batch_options_json(const PairSettings& settings, const QualityLimits& limits, const IntakeSettings& intake) {
   nlohmann::ordered_json options;
+  options["intake"]["mode"] = intake.mode == IntakeMode::Strict ? "strict" : "repair";
+  options["intake"]["max_dropped_area"] = intake.max_dropped_area;
+  options["intake"]["max_hole"] = intake.max_hole;
+  options["intake"]["max_hole_relative"] = intake.max_hole_relative;
   options["placement"]["snap_tolerance"] = settings.placement.snap_tolerance;
   options["placement"]["warn_snap_distance"] = settings.placement.warn_snap_distance;
   options["layout"]["greedy_diagonals"] = settings.layout.greedy_diagonals;
@@ -173,7 +177,8 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
 BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchSettings& settings,
                        const BatchProgressCallback& progress, const TargetStageCallback& on_stage) {
   const Clock::time_point start = Clock::now();
-  const ArchiveProvenance provenance = current_provenance(batch_options_json(settings.pair, settings.limits));
+  const ArchiveProvenance provenance =
+      current_provenance(batch_options_json(settings.pair, settings.limits, settings.intake));
   BatchArchive archive =
       settings.resume
           ? BatchArchive::resume(settings.archive, prepared.record, provenance, settings.archive_settings)
@@ -206,7 +211,7 @@ BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, 
     const TargetSpec& spec = plan.targets[i].spec;
     StageCallback stage;
     if (on_stage) stage = [&](const std::string& name) { on_stage(spec.name, name); };
-    const TargetRecord record = run_target(prepared, spec, settings.pair, settings.limits, stage);
+    const TargetRecord record = run_target(prepared, spec, settings.pair, settings.limits, settings.intake, stage);
     committer.commit(record, summary.targets[i]);
   });
   summary.interrupted = committer.interrupted();
@@ -227,14 +232,15 @@ BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, 
   return summary;
 }
 
-std::vector<TargetOutcome> check_batch(const PreparedTemplate& prepared, const BatchPlan& plan, int threads) {
+std::vector<TargetOutcome> check_batch(const PreparedTemplate& prepared, const BatchPlan& plan, int threads,
+                                       const IntakeSettings& intake) {
   const std::vector<std::size_t> to_check = runnable(plan);
   std::vector<TargetOutcome> outcomes(to_check.size());
   run_parallel(threads, to_check.size(), [&](std::size_t k) {
     const TargetSpec& spec = plan.targets[to_check[k]].spec;
     TargetOutcome& outcome = outcomes[k];
     outcome.name = spec.name;
-    outcome.error = check_target(prepared, spec);
+    outcome.error = check_target(prepared, spec, intake);
     outcome.ok = outcome.error.empty();
   });
   return outcomes;

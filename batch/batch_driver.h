@@ -14,6 +14,7 @@
 #include "batch/target_verdict.h"
 #include "batch/template_preparation.h"
 #include "io/archive_reader.h"
+#include "intake/scan_intake.h"
 #include "io/archive_records.h"
 #include "io/archive_writer.h"
 #include "map/pair_mapping.h"
@@ -42,6 +43,7 @@ struct BatchSettings {
   bool keep_parts = false;
   PairSettings pair;                       ///< the per-target pipeline's options
   QualityLimits limits;                    ///< past which a finished map is `suspect`
+  IntakeSettings intake;                   ///< what the scan intake may do to each target
   ArchiveWriteSettings archive_settings;   ///< compression, XDMF sidecar
   /// When set and it becomes true (a signal handler sets it), no further target starts: the
   /// targets in flight finish and are committed, the archive is assembled, and the summary
@@ -110,9 +112,10 @@ struct BatchSummary {
 };
 
 /// The method options recorded in the archive's provenance (a resumed run must use the same):
-/// the PairSettings fields and the quality limits (key "quality") as a JSON object. Thread count
-/// and sharding are not in it.
-std::string batch_options_json(const PairSettings& settings, const QualityLimits& limits = {});
+/// the PairSettings fields, the quality limits (key "quality") and the scan intake's settings as a
+/// JSON object. Thread count and sharding are not in it.
+std::string batch_options_json(const PairSettings& settings, const QualityLimits& limits = {},
+                               const IntakeSettings& intake = {});
 
 /// Run `plan` against `prepared`: create (or, with settings.resume, continue) the archive,
 /// run every target whose action is Run, commit each as it finishes, checkpoint, and assemble
@@ -126,6 +129,7 @@ BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, 
 
 /// What --dry-run does: check_target (batch/target_job.h) on every target the plan would run,
 /// in parallel on `threads` workers, without writing anything. Outcomes by name; `ran` false.
-std::vector<TargetOutcome> check_batch(const PreparedTemplate& prepared, const BatchPlan& plan, int threads);
+std::vector<TargetOutcome> check_batch(const PreparedTemplate& prepared, const BatchPlan& plan, int threads,
+                                       const IntakeSettings& intake = {});
 
 }  // namespace xparam

@@ -51,6 +51,13 @@ nlohmann::ordered_json target_json(const TargetOutcome& outcome, bool with_ran) 
   metrics["swaps"] = count_or_null(m.swaps);
   metrics["merges"] = count_or_null(m.merges);
   metrics["released_anchors"] = count_or_null(m.released_anchors);
+  metrics["dropped_faces"] = count_or_null(m.dropped_faces);
+  metrics["dropped_area"] = number_or_null(m.dropped_area);
+  metrics["holes_filled"] = count_or_null(m.holes_filled);
+  metrics["filled_area"] = number_or_null(m.filled_area);
+  metrics["on_filled_vertices"] = count_or_null(m.on_filled_vertices);
+  metrics["max_distance_to_scan"] = number_or_null(m.max_distance_to_scan);
+  metrics["file_faces"] = count_or_null(m.file_faces);
   target["metrics"] = metrics;
   nlohmann::ordered_json seconds;
   for (std::size_t s = 0; s < kTimingStages.size(); ++s) seconds[kTimingStages[s]] = number_or_null(outcome.stage_seconds[s]);

@@ -8,6 +8,8 @@
 #include "core/stopwatch.h"
 #include "core/orientation.h"
 #include "io/anchor_reader.h"
+#include "intake/filled_surface.h"
+#include "intake/scan_loader.h"
 #include "io/mesh_loader.h"
 #include "io/sha256.h"
 #include "layout/anchor_swaps.h"
@@ -31,21 +33,25 @@ struct LoadedTarget {
   std::optional<std::vector<int>> ground_truth;
 };
 
-LoadedMesh load_target_mesh(const PreparedTemplate& prepared, const TargetSpec& target) {
-  LoadedMesh loaded = load_mesh(target.mesh);
-  const std::optional<int>& genus = loaded.report.genus;
+// The target mesh through the scan intake (its anchors choose the part kept), and its anchors
+// in the mesh's numbering.
+void load_target_mesh(const PreparedTemplate& prepared, const TargetSpec& target, const IntakeSettings& intake,
+                      LoadedTarget& out) {
+  const AnchorSet file_anchors = read_anchors(target.anchors);
+  out.loaded = load_scan(target.mesh, file_anchors, intake);
+  const std::optional<int>& genus = out.loaded.report.genus;
   const int template_genus = *prepared.loaded.report.genus;
   if (!genus || *genus != template_genus)
     throw InputError(target.mesh.string() + ": genus mismatch: the target has genus " +
                      (genus ? std::to_string(*genus) : std::string("undefined")) + ", the template (" +
-                     prepared.record.mesh_file + ") genus " + std::to_string(template_genus));
-  return loaded;
+                     prepared.record.mesh_file + ") genus " + std::to_string(template_genus) +
+                     ": close the handle (a tunnel where two surfaces touch) in a mesh editor");
+  out.anchors = anchors_in_mesh_order(file_anchors, out.loaded.file_order);
 }
 
-// Anchors, matched by name against the template's (match_anchors throws naming both files),
-// and the ground truth when given.
+// Anchors matched by name against the template's (match_anchors throws naming both files), and
+// the ground truth when given.
 void read_target_inputs(const PreparedTemplate& prepared, const TargetSpec& target, LoadedTarget& out) {
-  out.anchors = anchors_in_mesh_order(read_anchors(target.anchors), out.loaded.file_order);
   if (!prepared.only_anchors.empty()) out.anchors = only_anchors(out.anchors, prepared.only_anchors);
   match_anchors(prepared.anchors, out.anchors);
   if (!target.ground_truth.empty()) {
@@ -55,9 +61,16 @@ void read_target_inputs(const PreparedTemplate& prepared, const TargetSpec& targ
   }
 }
 
-Eigen::MatrixX3d vertex_matrix(const Mesh& mesh) {
-  Eigen::MatrixX3d vertices(static_cast<Eigen::Index>(mesh.n_vertices()), 3);
-  for (VertexHandle v : mesh.vertices()) vertices.row(v.idx()) = position(mesh, v).transpose();
+// The target's vertices in file numbering (ground truth names file vertices); NaN for a vertex
+// the intake dropped (unused, or on a loose part), so an error measured there is not available.
+Eigen::MatrixX3d file_vertex_matrix(const LoadedMesh& loaded) {
+  const FileOrder& order = loaded.file_order;
+  Eigen::MatrixX3d vertices(order.file_vertices, 3);
+  for (int i = 0; i < order.file_vertices; ++i) {
+    const int v = order.mesh_vertex(i);
+    const Eigen::Vector3d p = v >= 0 ? position(loaded.mesh, VertexHandle(v)) : Eigen::Vector3d::Constant(TargetMetrics::kNaN);
+    vertices.row(i) = p.transpose();
+  }
   return vertices;
 }
 
@@ -80,9 +93,9 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
   record.corr_face.resize(n_vertices);
   record.corr_bary.resize(n_vertices, 3);
   for (Eigen::Index v = 0; v < n_vertices; ++v) {
-    const SurfacePoint& point = mapping.correspondence[static_cast<std::size_t>(v)];
+    const SurfacePoint point = to_file_point(order, mapping.correspondence[static_cast<std::size_t>(v)]);
     record.corr_face[v] = point.face;
-    record.corr_bary.row(v) = to_file_order(order, point.face, point.bary).transpose();
+    record.corr_bary.row(v) = point.bary.transpose();
   }
   record.face_patch = Eigen::Map<const Eigen::VectorXi>(mapping.face_patch.data(),
                                                         static_cast<Eigen::Index>(mapping.face_patch.size()));
@@ -102,9 +115,9 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
     out.bary.resize(n_points, 3);
     out.xyz.resize(n_points, 3);
     for (Eigen::Index p = 0; p < n_points; ++p) {
-      const SurfacePoint& point = curve.points[static_cast<std::size_t>(p)];
+      const SurfacePoint point = to_file_point(order, curve.points[static_cast<std::size_t>(p)]);
       out.face.push_back(point.face);
-      out.bary.row(p) = to_file_order(order, point.face, point.bary).transpose();
+      out.bary.row(p) = point.bary.transpose();
       out.xyz.row(p) = curve.positions[static_cast<std::size_t>(p)].transpose();
     }
     record.curves.push_back(std::move(out));
@@ -120,9 +133,19 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
   metrics.swaps = mapping.optimization.swaps;
   metrics.merges = mapping.optimization.merges;
   metrics.released_anchors = static_cast<int>(mapping.released_anchors.size());
+  const IntakeRecord& intake = target.loaded.intake;
+  metrics.dropped_faces = intake.dropped_faces();
+  metrics.dropped_area = intake.dropped_area();
+  metrics.holes_filled = static_cast<int>(intake.holes.size());
+  metrics.filled_area = intake.filled_area();
+  const FilledSurfaceImages filled = filled_surface_images(target.loaded, mapping.correspondence,
+                                                           mapping.remesh_vertices, static_cast<int>(n_vertices));
+  metrics.on_filled_vertices = filled.count;
+  metrics.max_distance_to_scan = filled.max_distance;
+  metrics.file_faces = order.file_faces;
   if (target.ground_truth)
     metrics.gt_error =
-        ground_truth_error(record.remesh_vertices, *target.ground_truth, vertex_matrix(target.loaded.mesh));
+        ground_truth_error(record.remesh_vertices, *target.ground_truth, file_vertex_matrix(target.loaded));
 }
 
 // The error text of a failed target: the message, prefixed by the mesh file unless it already
@@ -145,7 +168,8 @@ std::vector<SwappedAnchors> swapped_landmarks(const PairMapping& mapping) {
 }
 
 void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, const PairSettings& settings,
-                const QualityLimits& limits, const StageCallback& on_stage, TargetRecord& record) {
+                const QualityLimits& limits, const IntakeSettings& intake, const StageCallback& on_stage,
+                TargetRecord& record) {
   if (!target.problem.empty()) throw InputError(target.problem);
   const auto stage = [&](const char* name) {
     if (on_stage) on_stage(name);
@@ -153,7 +177,7 @@ void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, cons
   Stopwatch watch;
   LoadedTarget loaded;
   stage("load");
-  loaded.loaded = load_target_mesh(prepared, target);
+  load_target_mesh(prepared, target, intake, loaded);
   record.seconds[kLoad] = watch.lap();
   read_target_inputs(prepared, target, loaded);
   const double reading_anchors = watch.lap();
@@ -181,7 +205,7 @@ void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, cons
 }  // namespace
 
 TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& target, const PairSettings& settings,
-                        const QualityLimits& limits, const StageCallback& on_stage) {
+                        const QualityLimits& limits, const IntakeSettings& intake, const StageCallback& on_stage) {
   Stopwatch total;
   TargetRecord record;
   record.name = target.name;
@@ -202,7 +226,7 @@ TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& targ
     record = std::move(failed);
   };
   try {
-    run_stages(prepared, target, settings, limits, on_stage, record);
+    run_stages(prepared, target, settings, limits, intake, on_stage, record);
   } catch (const std::exception& e) {
     fail(e.what());
   } catch (...) {
@@ -212,11 +236,11 @@ TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& targ
   return record;
 }
 
-std::string check_target(const PreparedTemplate& prepared, const TargetSpec& target) {
+std::string check_target(const PreparedTemplate& prepared, const TargetSpec& target, const IntakeSettings& intake) {
   try {
     if (!target.problem.empty()) throw InputError(target.problem);
     LoadedTarget loaded;
-    loaded.loaded = load_target_mesh(prepared, target);
+    load_target_mesh(prepared, target, intake, loaded);
     read_target_inputs(prepared, target, loaded);
     // Placing on a copy refuses what map_pair's placement would: an index out of range, two
     // anchors on one vertex, a point that does not reach the surface.

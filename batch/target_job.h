@@ -14,6 +14,7 @@
 #include "batch/target_verdict.h"
 #include "batch/template_preparation.h"
 #include "io/archive_records.h"
+#include "intake/scan_intake.h"
 #include "map/pair_mapping.h"
 
 #include <string>
@@ -24,15 +25,17 @@ namespace xparam {
 /// by `limits`, or failed), with its diagnosis. `on_stage` hears each stage as it starts
 /// ("load", then map_pair's stages).
 /// Thread-safe: jobs for different targets may run at once on the same template.
+/// The target mesh goes through the scan intake (`intake`; intake/scan_loader.h) first.
 TargetRecord run_target(const PreparedTemplate& prepared, const TargetSpec& target,
                         const PairSettings& settings = {}, const QualityLimits& limits = {},
-                        const StageCallback& on_stage = {});
+                        const IntakeSettings& intake = {}, const StageCallback& on_stage = {});
 
-/// Check `target`'s inputs without mapping (what --dry-run does): the mesh loads and is usable,
-/// the anchors read and carry exactly the template's names (of its only_anchors when set) and
-/// place on the mesh (indices in range, no two on one vertex), the genus equals the template's,
-/// the ground truth (when given) reads and fits: every input error the run would meet. Returns
-/// the problem, empty when none.
-std::string check_target(const PreparedTemplate& prepared, const TargetSpec& target);
+/// Check `target`'s inputs without mapping (what --dry-run does): the mesh loads (through the scan
+/// intake) and is usable, the anchors read and carry exactly the template's names (of its
+/// only_anchors when set) and place on the mesh (indices in range, no two on one vertex), the genus
+/// equals the template's, the ground truth (when given) reads and fits: every input error the run
+/// would meet. Returns the problem, empty when none.
+std::string check_target(const PreparedTemplate& prepared, const TargetSpec& target,
+                         const IntakeSettings& intake = {});
 
 }  // namespace xparam

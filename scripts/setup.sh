@@ -8,6 +8,7 @@ packages=(
   libopenmesh-dev libeigen3-dev libtbb-dev libcli11-dev
   libhdf5-dev hdf5-tools nlohmann-json3-dev libssl-dev
   libgtest-dev googletest libbenchmark-dev
+  libcgal-dev
   python3 python3-h5py parallel libxml2-utils bsdutils
 )
 

@@ -2,6 +2,7 @@
 #include "cli/batch_progress.h"
 #include "cli/command_line.h"
 #include "cli/commands.h"
+#include "cli/intake_options.h"
 #include "cli/map_options.h"
 #include "cli/stop_signals.h"
 #include "cli/text_format.h"
@@ -57,6 +58,7 @@ struct BatchOptions {
   PairSettings map;  ///< --optimize, --merge, --no-stretch, --keep-corners, --second-layout, --untangle, --release-anchors
   QualityLimits limits;  ///< --max-folds, --max-e-l2, --max-area-deviation, --max-anchor-miss
   bool fail_on_suspect = false;  ///< exit 2 when a target is suspect, as when one failed
+  IntakeSettings intake;  ///< --intake, --max-dropped-area, --max-hole
 };
 
 [[noreturn]] void exit_with(int code, const std::string& message) {
@@ -125,7 +127,7 @@ void print_common_anchors(const CommonAnchors& common, std::ostream& out) {
 // What a run with these options would do, as the options it would record (and how targets find
 // their anchors): a dry run's proof that the command line says what the user meant.
 void print_effective_options(const BatchOptions& options, std::ostream& out) {
-  out << "options: " << batch_options_json(options.map, options.limits) << "\n"
+  out << "options: " << batch_options_json(options.map, options.limits, options.intake) << "\n"
       << "run: -j " << options.threads << ", shard " << options.shard
       << (options.fail_on_suspect ? ", --fail-on-suspect" : "") << "\n"
       << "anchor files: "
@@ -140,7 +142,7 @@ void print_effective_options(const BatchOptions& options, std::ostream& out) {
 int run_dry(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchOptions& options) {
   print_effective_options(options, std::cout);
   print_plan(plan, options, std::cout);
-  const std::vector<TargetOutcome> checked = check_batch(prepared, plan, options.threads);
+  const std::vector<TargetOutcome> checked = check_batch(prepared, plan, options.threads, options.intake);
   std::size_t problems = 0;
   for (const TargetOutcome& outcome : checked) {
     std::cout << "  check " << outcome.name << ": " << (outcome.ok ? "ok" : "FAILS: " + outcome.error) << "\n";
@@ -223,7 +225,8 @@ int run_command(const BatchOptions& options) {
     const std::map<std::string, ArchiveTargetSummary> committed =
         options.resume ? committed_targets(options.out) : std::map<std::string, ArchiveTargetSummary>{};
     const BatchPlan plan =
-        plan_batch(discovered, shard, committed, options.retry_failed, batch_options_json(options.map, options.limits));
+        plan_batch(discovered, shard, committed, options.retry_failed,
+                   batch_options_json(options.map, options.limits, options.intake));
     if (options.dry_run) {
       if (common) print_common_anchors(*common, std::cout);
       return run_dry(prepared, plan, options);
@@ -244,6 +247,7 @@ int run_command(const BatchOptions& options) {
     settings.checkpoint_seconds = options.checkpoint_seconds;
     settings.pair = options.map;
     settings.limits = options.limits;
+    settings.intake = options.intake;
     settings.stop = &signals.requested();
     const BatchSummary summary =
         run_batch(prepared, plan, settings, [&](const BatchProgress& p) { view->finished(p); },
@@ -349,6 +353,7 @@ void add_batch_command(CLI::App& app) {
   batch->add_option("--summary", options->summary, "Write a JSON summary (schemas/summary.schema.json)");
   add_map_options(*batch, options->map);
   add_quality_options(*batch, *options);
+  add_intake_options(*batch, options->intake);
   batch->add_flag("--keep-parts", options->keep_parts, "Keep OUT.parts after the final assembly");
   batch->add_flag("-q,--quiet", options->quiet, "No plan, no progress and no closing line on stderr (errors still)");
   batch->add_option("--checkpoint-seconds", options->checkpoint_seconds,

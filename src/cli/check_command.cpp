@@ -1,10 +1,12 @@
 // `xparam check MESH...`: validate mesh files and say whether the pipeline can use them.
 #include "cli/commands.h"
+#include "cli/intake_options.h"
 
 #include "core/errors.h"
 #include "core/mesh_builder.h"
 #include "core/orientation.h"
 #include "core/validation.h"
+#include "intake/scan_intake.h"
 #include "io/mesh_reader.h"
 
 #include <CLI/CLI.hpp>
@@ -24,6 +26,7 @@ struct CheckOptions {
   std::vector<std::string> meshes;
   bool json = false;
   bool no_repair = false;
+  IntakeSettings intake;  ///< --intake, --max-dropped-area, --max-hole
 };
 
 // What checking one file found: a report, or the error that stopped reading it.
@@ -32,11 +35,17 @@ struct CheckedFile {
   std::optional<MeshReport> report;
   std::optional<double> signed_volume;  // only for usable meshes (closed, so it is meaningful)
   std::string error;                    // reading or building failed
-  bool usable() const { return report && report->usable && error.empty(); }
+  // The intake's verdict on a file validation refuses (IntakeMode::Repair): what it would do and
+  // the validation of its result, or why it refuses.
+  std::optional<IntakeRecord> intake;
+  std::optional<MeshReport> after_intake;
+  std::string intake_error;
+  bool usable_as_is() const { return report && report->usable && error.empty(); }
+  bool usable() const { return usable_as_is() || (after_intake && after_intake->usable); }
 };
 
-CheckedFile check_file(const std::string& file, const ValidationSettings& settings) {
-  CheckedFile checked{file, std::nullopt, std::nullopt, ""};
+CheckedFile check_file(const std::string& file, const ValidationSettings& settings, const IntakeSettings& intake) {
+  CheckedFile checked{file, std::nullopt, std::nullopt, "", std::nullopt, std::nullopt, ""};
   try {
     const TriangleSoup soup = read_triangle_soup(file);
     checked.report = validate_soup(soup, settings);
@@ -44,6 +53,17 @@ CheckedFile check_file(const std::string& file, const ValidationSettings& settin
     // Building proves OpenMesh accepts what validation called usable (repaired as the loader does).
     const bool repaired = !report.reoriented_faces.empty() || !report.split_vertices.empty();
     if (report.usable) checked.signed_volume = signed_volume(build_mesh(repaired ? repair_soup(soup).soup : soup));
+    if (!report.usable && intake.mode == IntakeMode::Repair && settings.repair) {
+      try {
+        // Without anchors the largest part is kept, as a target's anchors usually choose it.
+        const PreparedScan prepared = prepare_scan(soup, {}, intake);
+        checked.intake = prepared.record;
+        checked.after_intake = validate_soup(prepared.soup, settings);
+        if (checked.after_intake->usable) checked.signed_volume = signed_volume(build_mesh(prepared.soup));
+      } catch (const InputError& e) {
+        checked.intake_error = e.what();
+      }
+    }
   } catch (const Error& e) {
     checked.error = e.what();
   }
@@ -106,6 +126,16 @@ nlohmann::json to_json(const CheckedFile& checked) {
   out["reoriented_faces"] = r.reoriented_faces.size();
   out["split_vertices"] = splits;
   out["vertex_copies"] = copies;
+  out["usable_as_is"] = checked.usable_as_is();
+  if (checked.intake) {
+    out["intake"] = intake_json(*checked.intake);
+    nlohmann::json remaining = nlohmann::json::array();
+    for (const Problem* p : checked.after_intake->errors()) remaining.push_back(p->message);
+    out["intake"]["problems_after"] = remaining;
+    out["intake"]["genus_after"] =
+        checked.after_intake->genus ? nlohmann::json(*checked.after_intake->genus) : nlohmann::json(nullptr);
+  }
+  if (!checked.intake_error.empty()) out["intake_refusal"] = checked.intake_error;
   return out;
 }
 
@@ -120,7 +150,8 @@ std::string point_text(const Eigen::Vector3d& p) {
 }
 
 void print_human(const CheckedFile& checked, std::ostream& out) {
-  out << checked.file << ": " << (checked.usable() ? "usable" : "NOT usable") << "\n";
+  out << checked.file << ": "
+      << (checked.usable_as_is() ? "usable" : checked.usable() ? "usable after the intake" : "NOT usable") << "\n";
   if (checked.report) {
     const MeshReport& r = *checked.report;
     out << "  " << count(r.vertices, "vertex", "vertices") << ", " << count(r.faces, "face", "faces") << ", "
@@ -140,6 +171,19 @@ void print_human(const CheckedFile& checked, std::ostream& out) {
     for (const Problem* p : r.repaired()) out << "  repaired: " << p->message << "\n";
     for (const Problem* p : r.warnings()) out << "  warning: " << p->message << "\n";
   }
+  if (checked.intake) {
+    out << "  intake (on by default for targets; --intake strict refuses instead):\n";
+    for (const std::string& step : checked.intake->describe()) out << "    " << step << "\n";
+    const MeshReport& after = *checked.after_intake;
+    out << "    after the intake: " << (after.usable ? "usable" : "NOT usable") << ", genus "
+        << (after.genus ? std::to_string(*after.genus) : std::string("undefined")) << "\n";
+    for (const Problem* p : after.errors()) out << "    error: " << p->message << "\n";
+  }
+  if (!checked.intake_error.empty()) out << "  intake refuses: " << checked.intake_error << "\n";
+  const MeshReport* final_report = checked.after_intake ? &*checked.after_intake : checked.report ? &*checked.report : nullptr;
+  if (checked.usable() && final_report && final_report->genus && *final_report->genus != 0)
+    out << "  note: genus " << *final_report->genus << ": pair and batch map genus-0 templates and refuse it "
+        << "(close the handle in a mesh editor)\n";
   if (!checked.error.empty()) out << "  error: " << checked.error << "\n";
 }
 
@@ -148,7 +192,7 @@ void run_check(const CheckOptions& options) {
   results.reserve(options.meshes.size());
   ValidationSettings settings;
   settings.repair = !options.no_repair;
-  for (const std::string& file : options.meshes) results.push_back(check_file(file, settings));
+  for (const std::string& file : options.meshes) results.push_back(check_file(file, settings, options.intake));
 
   size_t usable = 0;
   for (const CheckedFile& checked : results) usable += checked.usable();
@@ -171,13 +215,17 @@ void add_check_command(CLI::App& app) {
   CLI::App* check = app.add_subcommand(
       "check", "Validate mesh files (OBJ, PLY, OFF, STL): counts, topology, genus, defects. Faces wound "
                "against their neighbours are re-oriented and pinched vertices split, as the loader does "
-               "(listed as repairs). Exit status 0 when every mesh is usable (closed, one component, "
-               "2-manifold edges, orientable, no degenerate faces), 2 otherwise.");
+               "(listed as repairs). A mesh that is still not usable (holes, loose parts, duplicated faces, "
+               "non-manifold bits) is shown with what the scan intake would do to it as a target, and whether "
+               "the result is usable (--intake strict: not tried). Exit status 0 when every mesh is usable "
+               "(closed, one component, 2-manifold edges, orientable, no degenerate faces; as it is or after "
+               "the intake), 2 otherwise.");
   check->add_option("meshes", options->meshes, "Mesh files to check")->required()->check(CLI::ExistingFile);
   check->add_flag("--json", options->json, "Print a JSON array with one object per file");
   check->add_flag("--no-repair", options->no_repair,
                   "Judge the files as they are: inconsistent orientation and pinched vertices block use");
   check->footer("Example: xparam check scans/*.ply --json > report.json");
+  add_intake_options(*check, options->intake);
   check->callback([options] { run_check(*options); });
 }
 

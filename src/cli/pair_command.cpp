@@ -1,11 +1,14 @@
 // `xparam pair`: cross-parameterize one template against one target and write the results.
 #include "batch/file_order.h"
 #include "cli/commands.h"
+#include "core/errors.h"
+#include "cli/intake_options.h"
 #include "cli/map_options.h"
 #include "cli/pair_outputs.h"
 #include "cli/text_format.h"
 #include "io/anchor_reader.h"
 #include "io/curve_reader.h"
+#include "intake/scan_loader.h"
 #include "io/mesh_loader.h"
 #include "map/pair_mapping.h"
 
@@ -25,6 +28,7 @@ struct PairOptions {
   std::string out;
   bool quiet = false;
   PairSettings map;  ///< --optimize, --merge, --no-stretch, --untangle
+  IntakeSettings intake;  ///< --intake, --max-dropped-area, --max-hole (the target only)
 };
 
 // "4/11/345": whole degrees, slash-separated.
@@ -48,13 +52,22 @@ void run_pair(const PairOptions& options) {
   };
   progress("load");
   const LoadedMesh source = load_mesh(options.source);
-  const LoadedMesh target = load_mesh(options.target);
+  const AnchorSet target_file_anchors = read_anchors(options.target_anchors);
+  const LoadedMesh target = load_scan(options.target, target_file_anchors, options.intake);
   for (const LoadedMesh* mesh : {&source, &target})
     if (const std::string repairs = describe_repairs(mesh->report); !repairs.empty())
       progress(mesh->path.string() + ": repaired: " + repairs);
-  // Face + barycentric inputs are written against the files' corner order.
+  for (const std::string& step : target.intake.describe()) progress(target.path.string() + ": intake: " + step);
+  // The layout needs equal genus; a target with handles is refused here, naming it.
+  if (target.report.genus != source.report.genus)
+    throw InputError(options.target + ": genus " +
+                     (target.report.genus ? std::to_string(*target.report.genus) : std::string("undefined")) +
+                     ", the template (" + options.source + ") genus " +
+                     (source.report.genus ? std::to_string(*source.report.genus) : std::string("undefined")) +
+                     ": close the handle (a tunnel where two surfaces touch) in a mesh editor");
+  // Face + barycentric inputs are written against the files' corner order (and numbering).
   const AnchorSet source_anchors = anchors_in_mesh_order(read_anchors(options.source_anchors), source.file_order);
-  const AnchorSet target_anchors = anchors_in_mesh_order(read_anchors(options.target_anchors), target.file_order);
+  const AnchorSet target_anchors = anchors_in_mesh_order(target_file_anchors, target.file_order);
   std::vector<FeatureCurve> curves;
   if (!options.curves.empty())
     curves = validate_curves(curves_in_mesh_order(read_curves(options.curves), source.file_order), source.mesh);
@@ -111,11 +124,20 @@ void add_pair_command(CLI::App& app) {
   command->add_option("--out,-o", options->out, "Output directory")->required();
   command->add_flag("--quiet,-q", options->quiet, "No progress on stderr");
   add_map_options(*command, options->map);
+  add_intake_options(*command, options->intake);
   command->footer(
       "Example: xparam pair -s tests/data/human_man.obj --source-anchors tests/data/human.anchors.json "
       "-t tests/data/sample_targets/woman.obj --target-anchors tests/data/sample_targets/woman.anchors.json "
       "--curves tests/data/human_man.curves.json -o pair_out");
-  command->callback([options] { run_pair(*options); });
+  command->callback([options] {
+    try {
+      run_pair(*options);
+    } catch (const InputError& e) {
+      // A refused input is the job's verdict on the inputs (exit 2), not a failure of the program.
+      std::cerr << "xparam: " << e.what() << "\n";
+      throw CLI::RuntimeError(kExitSomeFailed);
+    }
+  });
 }
 
 }  // namespace xparam::cli

@@ -1,6 +1,8 @@
 #include "cli/pair_outputs.h"
 
+#include "cli/intake_options.h"
 #include "cli/map_options.h"
+#include "intake/filled_surface.h"
 #include "core/orientation.h"
 #include "io/mesh_writer.h"
 #include "io/text_file.h"
@@ -33,6 +35,8 @@ std::vector<Eigen::Vector3d> rows(const Eigen::MatrixX3d& matrix, int n) {
 
 // Folded faces stand out in magenta among the stretch colours.
 constexpr std::array<std::uint8_t, 3> kFlippedColor = {255, 0, 255};
+// Faces whose three corners map onto surface the intake filled in are grey: not the scan's.
+constexpr std::array<std::uint8_t, 3> kFilledColor = {128, 128, 128};
 
 // Blue at stretch 1 (isometric), through green, to red at stretch 2 and above.
 std::array<std::uint8_t, 3> stretch_color(double stretch) {
@@ -45,17 +49,36 @@ std::array<std::uint8_t, 3> stretch_color(double stretch) {
           static_cast<std::uint8_t>(std::lround(255 * blue))};
 }
 
-std::string correspondence_csv(const LoadedMesh& source, const LoadedMesh& target,
-                               const PairMapping& mapping) {
+// Faces in the target file's numbering (a fill face numbered after the file's, metrics.json
+// intake.fill_faces gives its corners); `filled` 1 when the image is on filled-in surface, with its
+// distance to the real scan.
+std::string correspondence_csv(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping,
+                               const FilledSurfaceImages& filled) {
   std::ostringstream out;
   out.precision(17);
-  out << "vertex,face,b0,b1,b2\n";
+  out << "vertex,face,b0,b1,b2,filled,distance_to_scan\n";
   for (int v = 0; v < source.file_order.file_vertices; ++v) {
-    const SurfacePoint& p = mapping.correspondence[static_cast<size_t>(v)];
-    const Eigen::Vector3d bary = to_file_order(target.file_order, p.face, p.bary);
-    out << v << ',' << p.face << ',' << bary[0] << ',' << bary[1] << ',' << bary[2] << '\n';
+    const SurfacePoint p = to_file_point(target.file_order, mapping.correspondence[static_cast<size_t>(v)]);
+    out << v << ',' << p.face << ',' << p.bary[0] << ',' << p.bary[1] << ',' << p.bary[2] << ','
+        << filled.on_filled[v] << ',' << filled.distance_to_scan[v] << '\n';
   }
   return out.str();
+}
+
+// The fill patches' faces and vertices in extended file numbering (after the file's).
+nlohmann::json fill_geometry_json(const LoadedMesh& target) {
+  const FileOrder& order = target.file_order;
+  nlohmann::json faces = nlohmann::json::array();
+  nlohmann::json vertices = nlohmann::json::array();
+  if (order.face_source.empty()) return {{"fill_faces", faces}, {"fill_vertices", vertices}};
+  for (FaceHandle f : target.mesh.faces())
+    if (order.is_filled(f.idx())) faces.push_back(file_triangle(target.mesh, order, f));
+  for (VertexHandle v : target.mesh.vertices()) {
+    if (order.file_vertex(v.idx()) < order.file_vertices) continue;
+    const Eigen::Vector3d p = position(target.mesh, v);
+    vertices.push_back({p.x(), p.y(), p.z()});
+  }
+  return {{"fill_faces", faces}, {"fill_vertices", vertices}};
 }
 
 // JSON numbers cannot be infinite; a degenerate map reports null there.
@@ -122,7 +145,8 @@ nlohmann::json anchor_miss_json(const PairMapping& mapping) {
   return misses;
 }
 
-nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping) {
+nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, const PairMapping& mapping,
+                            const FilledSurfaceImages& filled) {
   const Layout& layout = mapping.layout.layout;
   nlohmann::json metrics = {
       {"source", source.path.string()},
@@ -199,6 +223,14 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
     for (const std::string& warning : placed.warnings) warnings.push_back(warning);
   }
   metrics["warnings"] = warnings;
+  nlohmann::json intake = intake_json(target.intake);
+  intake.update(fill_geometry_json(target));
+  // The distortion and coverage figures above are measured on the prepared target, fill patches
+  // included; these say how much of the map lands there.
+  intake["template_vertices_on_filled_surface"] = filled.count;
+  intake["max_distance_to_scan"] = filled.max_distance;
+  intake["metrics_include_filled_surface"] = filled.count > 0;
+  metrics["intake"] = intake;
   return metrics;
 }
 
@@ -207,11 +239,10 @@ nlohmann::json curves_json(const LoadedMesh& target, const PairMapping& mapping)
   for (const MappedCurve& curve : mapping.curves) {
     nlohmann::json points = nlohmann::json::array();
     for (size_t i = 0; i < curve.points.size(); ++i) {
-      const Eigen::Vector3d bary =
-          to_file_order(target.file_order, curve.points[i].face, curve.points[i].bary);
+      const SurfacePoint p = to_file_point(target.file_order, curve.points[i]);
       const Eigen::Vector3d& x = curve.positions[i];
-      points.push_back({{"face", curve.points[i].face},
-                        {"barycentric", {bary[0], bary[1], bary[2]}},
+      points.push_back({{"face", p.face},
+                        {"barycentric", {p.bary[0], p.bary[1], p.bary[2]}},
                         {"position", {x[0], x[1], x[2]}}});
     }
     curves.push_back({{"name", curve.name}, {"closed", curve.closed}, {"points", points}});
@@ -227,7 +258,9 @@ void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& sour
   const std::vector<std::array<int, 3>> faces = file_triangles(source);
   const std::vector<Eigen::Vector3d> remesh = rows(mapping.remesh_vertices, source.file_order.file_vertices);
   write_obj(dir / "remesh.obj", remesh, faces);
-  write_text_atomically(dir / "correspondence.csv", correspondence_csv(source, target, mapping));
+  const FilledSurfaceImages filled =
+      filled_surface_images(target, mapping.correspondence, mapping.remesh_vertices, source.file_order.file_vertices);
+  write_text_atomically(dir / "correspondence.csv", correspondence_csv(source, target, mapping, filled));
 
   PlyAttributes attributes;
   attributes.face_doubles.push_back({"l2_stretch", mapping.distortion.face_l2_stretch});
@@ -236,9 +269,12 @@ void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& sour
   std::vector<int> flipped(faces.size(), 0);
   for (int f : mapping.quality.flipped_faces) flipped[f] = 1;
   attributes.face_ints.push_back({"flipped", flipped});
+  attributes.vertex_ints.push_back({"on_filled", filled.on_filled});
   for (size_t f = 0; f < faces.size(); ++f) {
-    attributes.face_colors.push_back(flipped[f] ? kFlippedColor
-                                                : stretch_color(mapping.distortion.face_l2_stretch[f]));
+    const bool on_filled = std::all_of(faces[f].begin(), faces[f].end(), [&](int v) { return filled.on_filled[v] == 1; });
+    attributes.face_colors.push_back(flipped[f]  ? kFlippedColor
+                                     : on_filled ? kFilledColor
+                                                 : stretch_color(mapping.distortion.face_l2_stretch[f]));
   }
   write_ply(dir / "stretch.ply", remesh, faces, attributes);
 
@@ -251,7 +287,7 @@ void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& sour
     }
     write_polylines_obj(dir / "curves.obj", polylines);
   }
-  write_text_atomically(dir / "metrics.json", metrics_json(source, target, mapping).dump(1) + "\n");
+  write_text_atomically(dir / "metrics.json", metrics_json(source, target, mapping, filled).dump(1) + "\n");
 }
 
 }  // namespace xparam::cli

@@ -30,7 +30,11 @@ double signed_volume(const Mesh& mesh) {
 }
 
 FileOrder FileOrder::identity(int faces, int vertices) {
-  return {std::vector<bool>(static_cast<size_t>(faces), false), vertices, {}};
+  FileOrder order;
+  order.reversed.assign(static_cast<size_t>(faces), false);
+  order.file_vertices = vertices;
+  order.file_faces = faces;
+  return order;
 }
 
 bool FileOrder::is_reversed(int face) const {
@@ -39,7 +43,27 @@ bool FileOrder::is_reversed(int face) const {
 
 int FileOrder::reversed_count() const { return static_cast<int>(std::count(reversed.begin(), reversed.end(), true)); }
 
+int FileOrder::file_face(int face) const {
+  if (face_source.empty()) return face;
+  XP_ASSERT_MSG(face >= 0 && face < static_cast<int>(face_source.size()), "face " << face);
+  return face_source[face];
+}
+
+int FileOrder::mesh_face(int face) const {
+  if (mesh_face_of_file.empty()) return face;
+  return face >= 0 && face < static_cast<int>(mesh_face_of_file.size()) ? mesh_face_of_file[face] : -1;
+}
+
+int FileOrder::mesh_vertex(int vertex) const {
+  if (mesh_vertex_of_file.empty()) return vertex;
+  return vertex >= 0 && vertex < static_cast<int>(mesh_vertex_of_file.size()) ? mesh_vertex_of_file[vertex] : -1;
+}
+
 int FileOrder::file_vertex(int vertex) const {
+  if (!vertex_source.empty()) {
+    XP_ASSERT_MSG(vertex >= 0 && vertex < static_cast<int>(vertex_source.size()), "vertex " << vertex);
+    return vertex_source[vertex];
+  }
   XP_ASSERT_MSG(vertex >= 0 && vertex < file_vertices + static_cast<int>(copy_of.size()),
                 "vertex " << vertex << " of " << file_vertices << " + " << copy_of.size() << " copies");
   return vertex < file_vertices ? vertex : copy_of[vertex - file_vertices];
@@ -48,6 +72,10 @@ int FileOrder::file_vertex(int vertex) const {
 Eigen::Vector3d to_file_order(const FileOrder& order, int face, const Eigen::Vector3d& bary) {
   if (!order.is_reversed(face)) return bary;
   return {bary[0], bary[2], bary[1]};
+}
+
+SurfacePoint to_file_point(const FileOrder& order, const SurfacePoint& point) {
+  return {order.file_face(point.face), to_file_order(order, point.face, point.bary)};
 }
 
 std::array<int, 3> file_triangle(const Mesh& mesh, const FileOrder& order, FaceHandle f) {

@@ -7,6 +7,7 @@
 /// vertices (io/mesh_loader.h); FileOrder converts between the mesh's numbering and the file's.
 
 #include "core/mesh.h"
+#include "core/surface_point.h"
 
 #include <Eigen/Core>
 
@@ -32,6 +33,15 @@ struct FileOrder {
   /// copy_of[k]: the file vertex that mesh vertex file_vertices + k is a copy of.
   std::vector<int> copy_of;
 
+  /// Renumbering by the scan intake (src/intake), empty when the mesh keeps the file's numbering.
+  /// Elements the intake added are numbered after the file's: the k-th fill face is face
+  /// file_faces + k, the m-th fill vertex is vertex file_vertices + m ("extended file numbering").
+  int file_faces = 0;
+  std::vector<int> face_source;        ///< per mesh face: its face in extended file numbering
+  std::vector<int> vertex_source;      ///< per mesh vertex: its vertex in extended file numbering
+  std::vector<int> mesh_face_of_file;    ///< per file face: its mesh face, -1 when dropped
+  std::vector<int> mesh_vertex_of_file;  ///< per file vertex: its mesh vertex, -1 when dropped
+
   /// The identity for a mesh with `faces` faces and `vertices` vertices, as in the file.
   static FileOrder identity(int faces, int vertices);
 
@@ -40,15 +50,28 @@ struct FileOrder {
   bool is_reversed(int face) const;
   /// How many faces are stored reversed.
   int reversed_count() const;
-  /// The file vertex of mesh vertex `vertex`: itself, or the vertex a copy was made from.
-  /// \pre 0 <= vertex < file_vertices + copy_of.size()
+  /// The file vertex of mesh vertex `vertex`: itself, or the vertex a copy was made from, or
+  /// (after the intake) its vertex in extended file numbering.
+  /// \pre 0 <= vertex < the mesh's vertex count
   int file_vertex(int vertex) const;
+  /// The face of mesh face `face` in extended file numbering (itself without the intake).
+  int file_face(int face) const;
+  /// True when mesh face `face` is part of a patch the intake filled a hole with.
+  bool is_filled(int face) const { return !face_source.empty() && file_face(face) >= file_faces; }
+  /// The mesh face of file face `face`, -1 when the intake dropped it.
+  int mesh_face(int face) const;
+  /// The mesh vertex of file vertex `vertex`, -1 when the intake dropped it.
+  int mesh_vertex(int vertex) const;
 };
 
 /// Barycentrics of a point on mesh face `face`, from the mesh's corner order to the file's:
 /// on a reversed face the mesh's (b_a, b_c, b_b) becomes (b_a, b_b, b_c); otherwise unchanged.
 /// The swap is its own inverse, so this also converts file order to mesh order.
 Eigen::Vector3d to_file_order(const FileOrder& order, int face, const Eigen::Vector3d& bary);
+
+/// A point on mesh face `point.face` as the file numbers it: the face in extended file numbering
+/// (FileOrder::file_face) and the barycentrics in the file's corner order.
+SurfacePoint to_file_point(const FileOrder& order, const SurfacePoint& point);
 
 /// The file's triangle of mesh face `f`: file vertex indices (copies replaced by their
 /// originals) in the file's corner order.

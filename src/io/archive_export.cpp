@@ -37,6 +37,19 @@ void export_remesh(const std::filesystem::path& archive, const std::string& name
     return;
   }
   PlyAttributes attributes;
+  // Template vertices whose image lies on surface the intake filled in: their face is numbered
+  // after the target file's (metrics file_faces); faces with three such corners are grey.
+  std::vector<int> on_filled(vertices.size(), 0);
+  for (std::size_t v = 0; v < on_filled.size(); ++v)
+    on_filled[v] = target.metrics.file_faces >= 0 && target.corr_face[static_cast<Eigen::Index>(v)] >= target.metrics.file_faces;
+  attributes.vertex_ints.push_back({"on_filled", on_filled});
+  if (std::count(on_filled.begin(), on_filled.end(), 1) > 0) {
+    for (const std::array<int, 3>& t : triangles) {
+      const bool filled = on_filled[t[0]] && on_filled[t[1]] && on_filled[t[2]];
+      attributes.face_colors.push_back(filled ? std::array<std::uint8_t, 3>{128, 128, 128}
+                                              : std::array<std::uint8_t, 3>{230, 230, 230});
+    }
+  }
   attributes.face_ints.push_back({"patch", {target.face_patch.data(), target.face_patch.data() + target.face_patch.size()}});
   attributes.face_doubles.push_back(
       {"l2_stretch", {target.face_l2_stretch.data(), target.face_l2_stretch.data() + target.face_l2_stretch.size()}});

@@ -5,8 +5,10 @@
 namespace xparam::archive_layout {
 
 MetricsRow to_row(const TargetMetrics& m) {
-  return {m.e_l2,       m.e_ang,    m.stretch_max_sv, m.flipped_faces,   m.strictly_folded_faces,
-          m.area_ratio, m.gt_error, m.swaps,          m.merges,          m.released_anchors};
+  return {m.e_l2,          m.e_ang,        m.stretch_max_sv,       m.flipped_faces, m.strictly_folded_faces,
+          m.area_ratio,    m.gt_error,     m.swaps,                m.merges,        m.released_anchors,
+          m.dropped_faces, m.dropped_area, m.holes_filled,         m.filled_area,   m.on_filled_vertices,
+          m.max_distance_to_scan, m.file_faces};
 }
 
 TargetMetrics from_row(const MetricsRow& r) {
@@ -21,6 +23,13 @@ TargetMetrics from_row(const MetricsRow& r) {
   m.swaps = r.swaps;
   m.merges = r.merges;
   m.released_anchors = r.released_anchors;
+  m.dropped_faces = r.dropped_faces;
+  m.dropped_area = r.dropped_area;
+  m.holes_filled = r.holes_filled;
+  m.filled_area = r.filled_area;
+  m.on_filled_vertices = r.on_filled_vertices;
+  m.max_distance_to_scan = r.max_distance_to_scan;
+  m.file_faces = r.file_faces;
   return m;
 }
 
@@ -42,6 +51,13 @@ h5::Handle metrics_type(bool packed) {
   insert("swaps", offsetof(MetricsRow, swaps), i32);
   insert("merges", offsetof(MetricsRow, merges), i32);
   insert("released_anchors", offsetof(MetricsRow, released_anchors), i32);
+  insert("dropped_faces", offsetof(MetricsRow, dropped_faces), i32);
+  insert("dropped_area", offsetof(MetricsRow, dropped_area), f64);
+  insert("holes_filled", offsetof(MetricsRow, holes_filled), i32);
+  insert("filled_area", offsetof(MetricsRow, filled_area), f64);
+  insert("on_filled_vertices", offsetof(MetricsRow, on_filled_vertices), i32);
+  insert("max_distance_to_scan", offsetof(MetricsRow, max_distance_to_scan), f64);
+  insert("file_faces", offsetof(MetricsRow, file_faces), i32);
   if (packed) h5::check(H5Tpack(type.get()), "metrics type", "cannot pack");
   return type;
 }

@@ -27,6 +27,13 @@ struct MetricsRow {
   std::int32_t swaps;
   std::int32_t merges;
   std::int32_t released_anchors;
+  std::int32_t dropped_faces;
+  double dropped_area;
+  std::int32_t holes_filled;
+  double filled_area;
+  std::int32_t on_filled_vertices;
+  double max_distance_to_scan;
+  std::int32_t file_faces;
 };
 
 /// MetricsRow <-> TargetMetrics.

@@ -19,7 +19,7 @@ namespace xparam {
 
 /// Version of the archive layout, stored as the root attribute `schema_version`.
 /// Bump it whenever a dataset is added, removed, renamed or changes meaning.
-inline constexpr int kArchiveSchemaVersion = 3;  // 2: released anchors; 3: suspect, diagnosis, strict folds
+inline constexpr int kArchiveSchemaVersion = 3;  // 2: released anchors; 3: suspect, diagnosis, strict folds, scan intake columns
 
 /// The stages whose wall-clock seconds are recorded per target, in column order of
 /// /targets/timings.
@@ -74,6 +74,17 @@ struct TargetMetrics {
   int swaps = -1;                ///< boundary swaps performed (paper section 4)
   int merges = -1;               ///< patch merges performed (paper section 5)
   int released_anchors = -1;     ///< anchors the map was released from (`--release-anchors`)
+  // The scan intake (src/intake); 0 when it took the file as it is. The figures above are
+  // measured on the prepared target, fill patches included.
+  int dropped_faces = -1;           ///< faces of the loose parts dropped
+  double dropped_area = kNaN;       ///< their area, target units squared
+  int holes_filled = -1;            ///< holes closed by a fill patch
+  double filled_area = kNaN;        ///< area of the fill patches, target units squared
+  int on_filled_vertices = -1;      ///< template vertices whose image lies on a fill patch
+  double max_distance_to_scan = kNaN;  ///< largest distance of such an image to the scan's own faces
+  /// Faces in the target file: a corr_face at or above it is a fill face (numbered after the
+  /// file's), i.e. the template vertex's image lies on filled-in surface.
+  int file_faces = -1;
 };
 
 /// Everything the archive keeps about one target. A failed target has ok == false, an

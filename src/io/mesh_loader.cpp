@@ -10,8 +10,11 @@
 namespace xparam {
 
 LoadedMesh load_mesh(const std::filesystem::path& path, const ValidationSettings& settings) {
-  TriangleSoup soup = read_triangle_soup(path);
-  LoadedMesh loaded{path, Mesh(), validate_soup(soup, settings), {}};
+  return load_soup(path, read_triangle_soup(path), settings);
+}
+
+LoadedMesh load_soup(const std::filesystem::path& path, TriangleSoup soup, const ValidationSettings& settings) {
+  LoadedMesh loaded{path, Mesh(), validate_soup(soup, settings), {}, {}};
   if (!loaded.report.usable) {
     // One line (the batch driver records it per target) with the first problems, each of
     // which names the file and the element.

@@ -4,6 +4,7 @@
 /// scans need (faces wound against their neighbours, pinched vertices; core/validation.h),
 /// build the OpenMesh mesh, orient it outward, start provenance.
 
+#include "core/intake_record.h"
 #include "core/mesh.h"
 #include "core/orientation.h"
 #include "core/validation.h"
@@ -25,6 +26,9 @@ struct LoadedMesh {
   /// with their neighbours, and/or all faces when the file's faced inward) and which vertices
   /// are copies: convert barycentrics and faces back with to_file_order / file_triangle.
   FileOrder file_order;
+  /// What the scan intake (src/intake) changed before validation; `applied` false when the mesh
+  /// is the file's (load_mesh never applies it).
+  IntakeRecord intake;
 };
 
 /// How many problems an unusable mesh's InputError lists before "and N more".
@@ -36,5 +40,8 @@ inline constexpr int kProblemsInLoadError = 5;
 /// appended), reverse every face when the signed volume is negative, and init_provenance(mesh)
 /// (core/provenance.h). Genus is not checked here. \throw InputError naming the file
 LoadedMesh load_mesh(const std::filesystem::path& path, const ValidationSettings& settings = {});
+
+/// load_mesh on a soup already read from `path` (validated here): what load_mesh does after reading.
+LoadedMesh load_soup(const std::filesystem::path& path, TriangleSoup soup, const ValidationSettings& settings = {});
 
 }  // namespace xparam

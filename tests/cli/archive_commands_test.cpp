@@ -13,8 +13,11 @@
 #include <sys/wait.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace xparam {
@@ -79,6 +82,14 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
   r.metrics.flipped_faces = k;
   r.metrics.strictly_folded_faces = k - 1;
   r.metrics.released_anchors = k % 2;
+  r.metrics.dropped_faces = 4 * k;
+  r.metrics.dropped_area = 0.01 * k;
+  r.metrics.holes_filled = k % 3;
+  r.metrics.filled_area = 0.02 * k;
+  // corr_face k..k+5 against a file of k + 3 faces: vertices 3, 4, 5 land on fill faces.
+  r.metrics.on_filled_vertices = 3;
+  r.metrics.max_distance_to_scan = 0.001 * k;
+  r.metrics.file_faces = k + 3;
   r.metrics.gt_error = k == 2 ? std::numeric_limits<double>::quiet_NaN() : 0.01 * k;
   r.seconds.fill(0.5 * k);
   return r;
@@ -219,6 +230,32 @@ TEST(ExportCommand, ObjAndPlyReadBackAsTheRemesh) {
     ASSERT_EQ(soup.triangles.size(), 8u);
     for (int f = 0; f < 8; ++f)
       EXPECT_EQ(soup.triangles[f], (std::array<int, 3>{t.faces(f, 0), t.faces(f, 1), t.faces(f, 2)})) << f;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(ExportCommand, PlyFlagsTheVerticesOnFilledInSurface) {
+  const fs::path dir = test::fresh_temp_dir("cli_export_filled");
+  const TemplateRecord t = make_template();
+  write_archive(dir / "run.h5", t, provenance(), make_targets(t));
+  const fs::path out = dir / "dora.ply";
+  const CommandRun run = run_xparam("export " + (dir / "run.h5").string() + " --target dora --out " + out.string(), dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::ifstream in(out, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t body = bytes.find("end_header\n");
+  ASSERT_NE(body, std::string::npos);
+  const std::string header = bytes.substr(0, body);
+  EXPECT_NE(header.find("element vertex 6\nproperty double x\nproperty double y\nproperty double z\n"
+                        "property int on_filled\n"),
+            std::string::npos)
+      << header;
+  EXPECT_NE(header.find("property uchar red"), std::string::npos) << header;
+  // Binary little endian: x, y, z as doubles, then the flag; vertices 3, 4, 5 are on fill faces.
+  for (int v = 0; v < 6; ++v) {
+    std::int32_t flag = -1;
+    std::memcpy(&flag, bytes.data() + body + 11 + v * 28 + 24, sizeof flag);
+    EXPECT_EQ(flag, v >= 3 ? 1 : 0) << "vertex " << v;
   }
   fs::remove_all(dir);
 }

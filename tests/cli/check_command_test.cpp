@@ -103,8 +103,8 @@ TEST(CheckCommand, GenusOneIsValidButSaysSo) {
   EXPECT_EQ(m["faces"], 500);
 }
 
-TEST(CheckCommand, OpenMeshIsNotUsable) {
-  const ProgramRun r = check("--json " + quoted(test::data_path("cat_head.obj")), "check_cat_head");
+TEST(CheckCommand, OpenMeshIsNotUsableWhenStrict) {
+  const ProgramRun r = check("--json --intake strict " + quoted(test::data_path("cat_head.obj")), "check_cat_head");
   EXPECT_EQ(r.status, 2) << r.out;  // some mesh unusable
   const nlohmann::json m = parse(r)[0];
   EXPECT_EQ(m["valid"], false);
@@ -113,9 +113,31 @@ TEST(CheckCommand, OpenMeshIsNotUsable) {
   EXPECT_TRUE(mentions(m["problems"], "cat_head.obj: not closed: boundary loop of 12 edges")) << m["problems"];
 }
 
+TEST(CheckCommand, OpenMeshIsUsableAfterTheIntakeFillsItsHole) {
+  // The head is open at the neck: a border of 4.4, over the default limit (a quarter of the diagonal).
+  const ProgramRun r = check("--json --max-hole 5 " + quoted(test::data_path("cat_head.obj")), "check_cat_head_intake");
+  EXPECT_EQ(r.status, 0) << r.out;
+  const nlohmann::json m = parse(r)[0];
+  EXPECT_EQ(m["valid"], true);
+  EXPECT_EQ(m["usable_as_is"], false);
+  ASSERT_EQ(m["intake"]["holes_filled"].size(), 1u) << m["intake"];
+  EXPECT_GT(m["intake"]["filled_faces"].get<int>(), 10);  // a 12-gon, refined
+  EXPECT_EQ(m["intake"]["problems_after"].size(), 0u);
+  EXPECT_EQ(m["intake"]["genus_after"], 0);
+
+  // The default limit refuses, naming the hole, the limit and the fix.
+  const ProgramRun limited = check(quoted(test::data_path("cat_head.obj")), "check_cat_head_max");
+  EXPECT_EQ(limited.status, 2) << limited.out;
+  EXPECT_NE(limited.out.find("cat_head.obj: NOT usable"), std::string::npos) << limited.out;
+  EXPECT_NE(limited.out.find("hole of 4.36 perimeter is over --max-hole 0.749 (25% of the bounding-box diagonal): "
+                             "close it in a mesh editor, or raise --max-hole"),
+            std::string::npos)
+      << limited.out;
+}
+
 TEST(CheckCommand, NonManifoldEdgeIsNamed) {
   const auto fin = write_fin(test::fresh_temp_dir("check_fin_input"));
-  const ProgramRun r = check("--json " + quoted(fin), "check_fin");
+  const ProgramRun r = check("--json --intake strict " + quoted(fin), "check_fin");
   EXPECT_EQ(r.status, 2) << r.out;  // some mesh unusable
   const nlohmann::json m = parse(r)[0];
   EXPECT_EQ(m["valid"], false);
@@ -147,7 +169,7 @@ TEST(CheckCommand, HumanReadableOutput) {
   EXPECT_NE(r.out.find("829 vertices, 1654 faces"), std::string::npos) << r.out;
 
   const auto fin = write_fin(test::fresh_temp_dir("check_human_fin_input"));
-  r = check(quoted(test::data_path("fox.ply")) + " " + quoted(fin), "check_human_bad");
+  r = check("--intake strict " + quoted(test::data_path("fox.ply")) + " " + quoted(fin), "check_human_bad");
   EXPECT_EQ(r.status, 2) << r.out;  // some mesh unusable
   EXPECT_NE(r.out.find("fin.obj: NOT usable"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  error: " + fin.string() + ": edge (1, 2) has 3 faces"), std::string::npos) << r.out;

@@ -123,7 +123,8 @@ TEST(Orientation, FileOrderRecoversTheFileTrianglesAndPoints) {
   const SoupRepair repair = repair_soup(file);
   ASSERT_EQ(repair.reoriented_faces, flipped);
   const Mesh mesh = build_mesh(repair.soup);
-  const FileOrder order{repair.reversed, static_cast<int>(file.vertices.size()), {}};
+  FileOrder order = FileOrder::identity(static_cast<int>(file.triangles.size()), static_cast<int>(file.vertices.size()));
+  order.reversed = repair.reversed;
   EXPECT_EQ(order.reversed_count(), 4);
 
   const Eigen::Vector3d mesh_bary(0.2, 0.5, 0.3);

@@ -121,6 +121,13 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
   r.metrics.swaps = 2 * k;
   r.metrics.merges = k % 3;
   r.metrics.released_anchors = k % 2;
+  r.metrics.dropped_faces = 4 * k;
+  r.metrics.dropped_area = 0.01 * k;
+  r.metrics.holes_filled = k % 3;
+  r.metrics.filled_area = 0.02 * k;
+  r.metrics.on_filled_vertices = 5 * k;
+  r.metrics.max_distance_to_scan = 0.001 * k;
+  r.metrics.file_faces = 1000 + k;
   for (std::size_t s = 0; s < r.seconds.size(); ++s) r.seconds[s] = 0.1 * static_cast<double>(s) + k;
   // Every other target is suspect, with a diagnosis in UTF-8 (a landmark name with an accent).
   r.suspect = k % 2 == 1;
@@ -231,7 +238,14 @@ nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
                           {"gt_error", r.metrics.gt_error},
                           {"swaps", r.metrics.swaps},
                           {"merges", r.metrics.merges},
-                          {"released_anchors", r.metrics.released_anchors}}},
+                          {"released_anchors", r.metrics.released_anchors},
+                          {"dropped_faces", r.metrics.dropped_faces},
+                          {"dropped_area", r.metrics.dropped_area},
+                          {"holes_filled", r.metrics.holes_filled},
+                          {"filled_area", r.metrics.filled_area},
+                          {"on_filled_vertices", r.metrics.on_filled_vertices},
+                          {"max_distance_to_scan", r.metrics.max_distance_to_scan},
+                          {"file_faces", r.metrics.file_faces}}},
                         {"seconds", std::vector<double>(r.seconds.begin(), r.seconds.end())}};
     if (r.ok) {
       j["remesh_vertices"] = matrix_json(r.remesh_vertices);

@@ -56,14 +56,15 @@ TEST(PairCommand, RemeshIsTheCorrespondenceOnTheTargetWithTheTemplatesFaces) {
   std::ifstream csv(out / "correspondence.csv");
   std::string line;
   std::getline(csv, line);
-  EXPECT_EQ(line, "vertex,face,b0,b1,b2");
+  EXPECT_EQ(line, "vertex,face,b0,b1,b2,filled,distance_to_scan");
   std::size_t rows = 0;
   while (std::getline(csv, line)) {
     std::istringstream fields(line);
     std::string field;
     std::vector<double> values;
     while (std::getline(fields, field, ',')) values.push_back(std::stod(field));
-    ASSERT_EQ(values.size(), 5u) << line;
+    ASSERT_EQ(values.size(), 7u) << line;
+    EXPECT_EQ(values[5], 0.0) << line;  // a clean target: nothing filled in
     const int vertex = static_cast<int>(values[0]);
     const int face = static_cast<int>(values[1]);
     ASSERT_EQ(vertex, static_cast<int>(rows));
@@ -157,9 +158,10 @@ TEST(PairCommand, NoUntangleLeavesTheFoldsOfGamma) {
   EXPECT_NE(header.find("property int flipped"), std::string::npos) << header;
 }
 
-TEST(PairCommand, AFailingStageExitsThreeAndWritesNoResults) {
+TEST(PairCommand, RefusedInputsExitTwoAndWriteNoResults) {
   const fs::path dir = test::fresh_temp_dir("pair_command_failing");
-  // Anchors the target does not have: the pair cannot be matched.
+  // Anchors the target does not have: the pair cannot be matched, a refused input (exit 2, as
+  // check and batch give for inputs they refuse).
   const fs::path wrong = dir / "wrong.anchors.json";
   std::ofstream(wrong) << R"({"head": 412, "left wrist": 2241, "right wrist": 5559, "nowhere": 3458})";
   const std::string arguments = "pair --quiet --source " + test::data_path("human_man.obj").string() +
@@ -167,7 +169,7 @@ TEST(PairCommand, AFailingStageExitsThreeAndWritesNoResults) {
                                 " --target " + test::data_path("sample_targets/woman.obj").string() +
                                 " --target-anchors " + wrong.string() + " --out " + (dir / "out").string();
   std::string errors;
-  EXPECT_EQ(test::run_xparam(arguments, dir, errors), 3);
+  EXPECT_EQ(test::run_xparam(arguments, dir, errors), 2);
   EXPECT_NE(errors.find("nowhere"), std::string::npos) << errors;
   EXPECT_FALSE(fs::exists(dir / "out" / "metrics.json"));
   EXPECT_FALSE(fs::exists(dir / "out" / "correspondence.csv"));

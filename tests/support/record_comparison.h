@@ -63,6 +63,13 @@ inline void expect_same_results(const TargetRecord& a, const TargetRecord& b) {
   EXPECT_EQ(a.metrics.swaps, b.metrics.swaps);
   EXPECT_EQ(a.metrics.merges, b.metrics.merges);
   EXPECT_EQ(a.metrics.released_anchors, b.metrics.released_anchors);
+  EXPECT_EQ(a.metrics.dropped_faces, b.metrics.dropped_faces);
+  EXPECT_TRUE(same_bits(a.metrics.dropped_area, b.metrics.dropped_area));
+  EXPECT_EQ(a.metrics.holes_filled, b.metrics.holes_filled);
+  EXPECT_TRUE(same_bits(a.metrics.filled_area, b.metrics.filled_area));
+  EXPECT_EQ(a.metrics.on_filled_vertices, b.metrics.on_filled_vertices);
+  EXPECT_TRUE(same_bits(a.metrics.max_distance_to_scan, b.metrics.max_distance_to_scan));
+  EXPECT_EQ(a.metrics.file_faces, b.metrics.file_faces);
 }
 
 }  // namespace xparam::test
