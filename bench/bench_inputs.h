@@ -5,6 +5,10 @@
 #include "core/mesh.h"
 #include "core/provenance.h"
 #include "io/mesh_loader.h"
+#include "map/pair_mapping.h"
+
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include <filesystem>
 #include <limits>
@@ -95,6 +99,22 @@ inline AnchorSet named_anchors(const std::vector<VertexHandle>& vertices, const 
   for (std::size_t k = 0; k < vertices.size(); ++k)
     set.anchors.push_back({"a" + std::to_string(k), AnchorVertex{vertices[k].idx()}, "", 0});
   return set;
+}
+
+// Counters every whole-pair benchmark reports: the stage seconds of `sum` (over `iterations`
+// runs; the untangling is inside compose) and the process's peak resident memory.
+inline void report_pair_seconds(benchmark::State& state, const PairSeconds& sum, double iterations) {
+  state.counters["s_anchors"] = sum.anchors / iterations;
+  state.counters["s_layout"] = sum.layout / iterations;
+  state.counters["s_optimize"] = sum.optimize / iterations;
+  state.counters["s_parameterize"] = sum.parameterize / iterations;
+  state.counters["s_compose"] = sum.compose / iterations;
+  state.counters["s_untangle"] = sum.untangle / iterations;
+  state.counters["s_optimize_map"] = sum.optimize_map / iterations;
+  state.counters["s_metrics"] = sum.metrics / iterations;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
 }  // namespace xparam::bench

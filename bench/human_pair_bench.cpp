@@ -18,7 +18,6 @@
 
 #include <benchmark/benchmark.h>
 #include <nlohmann/json.hpp>
-#include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <unistd.h>
 
@@ -92,22 +91,13 @@ void BM_HumanPair50k73Landmarks(benchmark::State& state) {
   state.counters["s_pair"] = sum.total / n;
   state.counters["s_floor"] = floor;
   state.counters["floor_x"] = sum.total / n / floor;
-  state.counters["s_anchors"] = sum.anchors / n;
-  state.counters["s_layout"] = sum.layout / n;
-  state.counters["s_optimize"] = sum.optimize / n;
-  state.counters["s_parameterize"] = sum.parameterize / n;
-  state.counters["s_compose"] = sum.compose / n;
-  state.counters["s_optimize_map"] = sum.optimize_map / n;
-  state.counters["s_metrics"] = sum.metrics / n;
+  bench::report_pair_seconds(state, sum, n);
   state.counters["E_L2"] = map.distortion.all.e_l2;
   state.counters["strict_folds"] = map.quality.strictly_folded_faces;
   state.counters["maps_made"] = map.maps_made;
   state.counters["tips"] = static_cast<double>(map.extremity_anchors.size());
   state.counters["area_ratio"] = map.quality.area_ratio;
   state.counters["gt_pct_sqrtA"] = 100.0 * gt_error;
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 BENCHMARK(BM_HumanPair50k73Landmarks)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 

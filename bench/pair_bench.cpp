@@ -5,7 +5,6 @@
 #include "map/pair_mapping.h"
 
 #include <benchmark/benchmark.h>
-#include <sys/resource.h>
 #include <tbb/global_control.h>
 
 namespace xparam {
@@ -21,32 +20,17 @@ void BM_PairPipeline50(benchmark::State& state) {
   int flipped = 0;
   for (auto _ : state) {
     const PairMapping map = map_pair(in.source, source_anchors, in.target, target_anchors, {});
-    sum.anchors += map.seconds.anchors;
-    sum.layout += map.seconds.layout;
-    sum.optimize += map.seconds.optimize;
-    sum.parameterize += map.seconds.parameterize;
-    sum.compose += map.seconds.compose;
-    sum.untangle += map.seconds.untangle;
-    sum.metrics += map.seconds.metrics;
+    sum.add_stages(map.seconds);
     distortion = map.distortion.all;
     flipped = static_cast<int>(map.quality.flipped_faces.size());
   }
   const double n = static_cast<double>(state.iterations());
   state.counters["source_V"] = static_cast<double>(in.source.n_vertices());
   state.counters["target_V"] = static_cast<double>(in.target.n_vertices());
-  state.counters["s_anchors"] = sum.anchors / n;
-  state.counters["s_layout"] = sum.layout / n;
-  state.counters["s_optimize"] = sum.optimize / n;
-  state.counters["s_parameterize"] = sum.parameterize / n;
-  state.counters["s_compose"] = sum.compose / n;  // the untangling included
-  state.counters["s_untangle"] = sum.untangle / n;
-  state.counters["s_metrics"] = sum.metrics / n;
+  bench::report_pair_seconds(state, sum, n);
   state.counters["E_L2"] = distortion.e_l2;
   state.counters["E_ang"] = distortion.e_ang;
   state.counters["flipped"] = flipped;
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 BENCHMARK(BM_PairPipeline50)->Unit(benchmark::kMillisecond)->UseRealTime();
 

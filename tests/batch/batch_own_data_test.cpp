@@ -81,7 +81,7 @@ TEST(BatchOwnData, AnchorsPatternAndCommonAnchorsOnAFaustLikeFolder) {
   EXPECT_NE(report.find("\"CROTCH\": missing on 2 target files"), std::string::npos) << report;
   EXPECT_NE(report.find("check tr_scan_001: ok"), std::string::npos) << report;
   // The effective options, as the run would record them, and where the anchors come from.
-  EXPECT_NE(report.find("options: {\"placement\""), std::string::npos) << report;
+  EXPECT_NE(report.find("options: {\"intake\":{\"mode\":\"repair\""), std::string::npos) << report;
   EXPECT_NE(report.find("\"max_e_l2\":10.0"), std::string::npos) << report;
   EXPECT_NE(report.find("anchor files: in " + (dir / "landmarks").string() + " as {stem}_landmarks.json"), std::string::npos)
       << report;
