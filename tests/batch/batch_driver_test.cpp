@@ -1,12 +1,11 @@
-// Whole batch runs through the library: failures recorded while the rest completes, identical
-// datasets at any thread count, resume, and shards merged into one run's datasets.
+// Whole batch runs through the library: resume completes only what is missing, a dry run writes
+// nothing (thread counts and shards: batch_driver_slow_test).
 #include "batch/batch_driver.h"
 
 #include "batch/target_job.h"
-#include "batch_test_support.h"
+#include "batch_library_support.h"
 #include "core/errors.h"
 #include "io/archive_commit.h"
-#include "io/archive_merge.h"
 
 #include <gtest/gtest.h>
 
@@ -17,92 +16,11 @@ namespace {
 
 using test::fs::path;
 
-const PreparedTemplate& man() {
-  static const PreparedTemplate prepared = prepare_template(test::man_template());
-  return prepared;
-}
-
-// The map without its optimization on the target nor the map through protrusion tips, for the
-// tests of the archive's bookkeeping (resume, shards): a few times faster, and what they check
-// does not depend on the map.
-PairSettings quick() {
-  PairSettings settings;
-  settings.optimize_map = false;
-  settings.extremity_anchors = false;
-  return settings;
-}
-
-BatchSummary run(const path& targets, const path& archive, int threads, const Shard& shard = {},
-                 const BatchProgressCallback& progress = {}, const PairSettings& pair = {}) {
-  BatchSettings settings;
-  settings.archive = archive;
-  settings.threads = threads;
-  settings.pair = pair;
-  return run_batch(man(), plan_batch(discover_targets(targets), shard, {}, false), settings, progress);
-}
-
-BatchSummary resume(const path& targets, const path& archive, bool retry_failed, const PairSettings& pair = {}) {
-  BatchSettings settings;
-  settings.archive = archive;
-  settings.threads = 2;
-  settings.resume = true;
-  settings.pair = pair;
-  return run_batch(man(), plan_batch(discover_targets(targets), {}, committed_targets(archive), retry_failed),
-                   settings);
-}
-
-const TargetOutcome& outcome(const BatchSummary& summary, const std::string& name) {
-  for (const TargetOutcome& o : summary.targets)
-    if (o.name == name) return o;
-  throw std::runtime_error("no outcome " + name);
-}
-
-TEST(BatchDriver, FailuresAreRecordedAndThreadCountDoesNotChangeTheDatasets) {
-  const path dir = test::fresh_temp_dir("driver_threads");
-  test::copy_sample_targets(dir / "targets", {"woman", "woman_turned", "man_flipped", "man_bent"});
-  test::add_broken_targets(dir / "targets");
-
-  // The map's own thread independence, optimization on the target included, is
-  // PairMapping.UntanglingIsTheSameAtOneAndTwoThreads; this is the batch's.
-  std::vector<std::size_t> done;
-  const BatchSummary one = run(dir / "targets", dir / "one.h5", 1, {}, [&](const BatchProgress& p) {
-    EXPECT_EQ(p.total, 8u);
-    ASSERT_NE(p.last, nullptr);
-    EXPECT_LE(p.failed, p.done);
-    done.push_back(p.done);
-  }, quick());
-  EXPECT_EQ(done, (std::vector<std::size_t>{1, 2, 3, 4, 5, 6, 7, 8}));
-  EXPECT_EQ(one.ran, 8u);
-  EXPECT_EQ(one.succeeded, 4u);
-  EXPECT_EQ(one.failed, 4u);
-  EXPECT_EQ(one.archive_targets, 8u);
-  for (const char* name : {"woman", "woman_turned", "man_flipped", "man_bent"}) {
-    const TargetOutcome& o = outcome(one, name);
-    EXPECT_TRUE(o.ok) << name << ": " << o.error;
-    // Same vertex order on every sample target: the ground truth is the identity. A mix-up of
-    // targets or vertex orders would put the mean error near half a body height.
-    EXPECT_LT(o.metrics.gt_error, 0.1) << name;
-  }
-  EXPECT_NE(outcome(one, "torus").error.find("genus mismatch"), std::string::npos);
-  EXPECT_NE(outcome(one, "no_anchors").error.find("no anchors"), std::string::npos);
-  EXPECT_NE(outcome(one, "unknown_name").error.find("NOT_A_LANDMARK"), std::string::npos);
-  EXPECT_NE(outcome(one, "truncated").error.find("truncated.obj"), std::string::npos);
-  EXPECT_FALSE(std::filesystem::exists(parts_directory(dir / "one.h5")));
-
-  const ArchiveReader reader(dir / "one.h5");
-  ASSERT_EQ(reader.targets().size(), 8u);
-  for (std::size_t i = 0; i < reader.targets().size(); ++i) {
-    const ArchiveTargetSummary& row = reader.targets()[i];
-    EXPECT_EQ(row.ok, outcome(one, row.name).ok);
-    EXPECT_EQ(row.error, outcome(one, row.name).error);
-    EXPECT_TRUE(std::isfinite(row.seconds.back())) << row.name;
-  }
-
-  const BatchSummary two = run(dir / "targets", dir / "two.h5", 2, {}, {}, quick());
-  EXPECT_EQ(two.threads, 2);
-  EXPECT_EQ(two.failed, 4u);
-  test::expect_same_datasets(dir / "one.h5", dir / "two.h5");
-}
+using test::man;
+using test::outcome;
+using test::quick;
+using test::resume;
+using test::run;
 
 TEST(BatchDriver, ResumeCompletesOnlyWhatIsMissing) {
   const path dir = test::fresh_temp_dir("driver_resume");
@@ -142,22 +60,6 @@ TEST(BatchDriver, ResumeCompletesOnlyWhatIsMissing) {
   PairSettings other = quick();
   other.layout.greedy_diagonals = false;
   EXPECT_THROW(resume(dir / "targets", dir / "resumed.h5", true, other), ArchiveError);
-}
-
-TEST(BatchDriver, ShardsMergeIntoTheDatasetsOfOneRun) {
-  const path dir = test::fresh_temp_dir("driver_shards");
-  test::copy_sample_targets(dir / "targets", {"woman_turned", "man_bent"});
-  test::add_broken_targets(dir / "targets");
-  run(dir / "targets", dir / "single.h5", 2, {}, {}, quick());
-  std::vector<path> shards;
-  for (int i = 0; i < 3; ++i) {
-    shards.push_back(dir / ("shard_" + std::to_string(i) + ".h5"));
-    const BatchSummary summary = run(dir / "targets", shards.back(), 1, {i, 3}, {}, quick());
-    EXPECT_EQ(summary.discovered, 6u);
-    EXPECT_EQ(summary.targets.size(), 2u);
-  }
-  merge_archives(shards, dir / "merged.h5");
-  test::expect_same_datasets(dir / "single.h5", dir / "merged.h5");
 }
 
 TEST(BatchDriver, DryRunChecksEveryTargetWithoutWriting) {

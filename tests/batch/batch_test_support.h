@@ -195,4 +195,16 @@ inline bool has_committed_part(const fs::path& archive) {
   return false;
 }
 
+// python3 with h5py (a test dependency: Debian's python3-h5py), or a test failure saying so.
+inline std::string python_or_skip() {
+  const std::string python = python_with_h5py();
+  if (python.empty()) ADD_FAILURE() << "no python3 with h5py (Debian's python3-h5py is a dependency of the tests)";
+  return python;
+}
+
+// Whether the independent h5py reader finds the same datasets in archives `a` and `b` (0 if so).
+inline int compare_with_h5py(const fs::path& a, const fs::path& b) {
+  return run_status(python_or_skip() + " " + quoted(read_back_script()) + " --compare " + quoted(a) + " " + quoted(b));
+}
+
 }  // namespace xparam::test

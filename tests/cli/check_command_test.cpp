@@ -1,43 +1,18 @@
 // Tests of the `xparam check` program itself: exit status, JSON keys and values, messages.
-#include "support/test_data.h"
+#include "check_program_support.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 namespace xparam {
 namespace {
 
-struct ProgramRun {
-  int status = -1;
-  std::string out;  // stdout and stderr
-};
-
-// Built with a stream: GCC 12 at -O3 reports a false -Wrestrict on "'" + string + "'".
-std::string quoted(const std::filesystem::path& path) {
-  std::ostringstream out;
-  out << "'" << path.string() << "'";
-  return out.str();
-}
-
-ProgramRun run(const std::string& arguments, const std::string& test_name) {
-  const auto output = test::fresh_temp_dir(test_name) / "output.txt";
-  const std::string command = arguments + " > " + quoted(output) + " 2>&1";
-  const int raw = std::system(command.c_str());
-  ProgramRun result;
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream in(output);
-  std::ostringstream text;
-  text << in.rdbuf();
-  result.out = text.str();
-  return result;
-}
+using test::ProgramRun;
+using test::quoted;
+using test::run;
 
 ProgramRun check(const std::string& arguments, const std::string& test_name) {
   return run(quoted(test::xparam_binary()) + " check " + arguments, test_name);
@@ -182,14 +157,8 @@ TEST(CheckCommand, MissingFileIsACommandLineError) {
   EXPECT_NE(r.out.find("nowhere.obj"), std::string::npos) << r.out;
 }
 
-// scripts/check_shared_data.py, which compares `xparam check --json` with the SOURCE.txt tables.
-ProgramRun compare_script(const std::filesystem::path& data, const std::string& test_name) {
-  const auto script = std::filesystem::path(XPARAM_SOURCE_DIR) / "scripts" / "check_shared_data.py";
-  return run("python3 " + quoted(script) + " --xparam " + quoted(test::xparam_binary()) + " --data " + quoted(data),
-             test_name);
-}
-
-bool have_python() { return std::system("python3 -c 'import json' > /dev/null 2>&1") == 0; }
+using test::compare_script;
+using test::have_python;
 
 TEST(CheckSharedData, ComparisonScriptCatchesAWrongCount) {
   if (!have_python()) GTEST_SKIP() << "python3 not available";
@@ -213,16 +182,6 @@ TEST(CheckSharedData, ComparisonScriptCatchesAWrongCount) {
   EXPECT_EQ(r.status, 2) << r.out;  // some mesh unusable
   EXPECT_NE(r.out.find("MISMATCH set/bob.ply: Euler characteristic: table 2 (genus 0), xparam 0"), std::string::npos)
       << r.out;
-}
-
-TEST(CheckSharedData, AgreesWithEverySourceTable) {
-  const auto data = test::shared_data_dir();
-  if (data.empty()) GTEST_SKIP() << "no ../shared/data";
-  if (!have_python()) GTEST_SKIP() << "python3 not available";
-  const ProgramRun r = compare_script(data, "check_shared_data");
-  EXPECT_EQ(r.status, 0) << r.out;
-  EXPECT_NE(r.out.find(": all agree"), std::string::npos) << r.out;
-  EXPECT_EQ(r.out.find("MISMATCH"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -1,0 +1,50 @@
+#pragma once
+// Running `xparam check` and scripts/check_shared_data.py as programs, output captured, for the
+// check command's tests.
+#include "support/test_data.h"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace xparam::test {
+
+struct ProgramRun {
+  int status = -1;
+  std::string out;  // stdout and stderr
+};
+
+// Built with a stream: GCC 12 at -O3 reports a false -Wrestrict on "'" + string + "'".
+inline std::string quoted(const std::filesystem::path& path) {
+  std::ostringstream out;
+  out << "'" << path.string() << "'";
+  return out.str();
+}
+
+inline ProgramRun run(const std::string& arguments, const std::string& test_name) {
+  const auto output = fresh_temp_dir(test_name) / "output.txt";
+  const std::string command = arguments + " > " + quoted(output) + " 2>&1";
+  const int raw = std::system(command.c_str());
+  ProgramRun result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(output);
+  std::ostringstream text;
+  text << in.rdbuf();
+  result.out = text.str();
+  return result;
+}
+
+// scripts/check_shared_data.py, which compares `xparam check --json` with the SOURCE.txt tables.
+inline ProgramRun compare_script(const std::filesystem::path& data, const std::string& test_name) {
+  const auto script = std::filesystem::path(XPARAM_SOURCE_DIR) / "scripts" / "check_shared_data.py";
+  return run("python3 " + quoted(script) + " --xparam " + quoted(xparam_binary()) + " --data " + quoted(data),
+             test_name);
+}
+
+inline bool have_python() { return std::system("python3 -c 'import json' > /dev/null 2>&1") == 0; }
+
+}  // namespace xparam::test
