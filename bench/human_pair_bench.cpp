@@ -14,18 +14,18 @@
 #include "core/closest_point.h"
 #include "evaluate/decimated_target.h"
 #include "evaluate/floor_time.h"
+#include "evaluate/landmark_files.h"
 #include "map/pair_mapping.h"
 
 #include <benchmark/benchmark.h>
-#include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace xparam {
 namespace {
@@ -49,14 +49,10 @@ struct HumanPair50k {
     target = evaluate::write_and_load_genus0(
         evaluate::decimate(bench::subdivide(bench::subdivide(registration.mesh)), 50000), target_file);
     source = load_mesh(template_file);
-    std::ifstream in(landmarks);
-    const nlohmann::ordered_json ids = nlohmann::ordered_json::parse(in);
-    source_anchors.source = target_anchors.source = landmarks.string();
-    for (const auto& [name, id] : ids.items()) {
-      source_anchors.anchors.push_back({name, AnchorVertex{id.get<int>()}, landmarks.string(), 0});
-      const Eigen::Vector3d on_target = position(registration.mesh, VertexHandle(id.get<int>()));
-      target_anchors.anchors.push_back({name, AnchorPosition{on_target}, landmarks.string(), 0});
-    }
+    evaluate::CarriedLandmarks carried =
+        evaluate::landmarks_through_registration(evaluate::read_ids(landmarks), registration.mesh, landmarks, landmarks);
+    source_anchors = std::move(carried.source);
+    target_anchors = std::move(carried.target);
     for (VertexHandle v : registration.mesh.vertices()) truth.push_back(position(registration.mesh, v));
   }
   ~HumanPair50k() {

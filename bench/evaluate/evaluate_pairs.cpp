@@ -44,6 +44,7 @@
 #include "core/mesh.h"
 #include "evaluate/decimated_target.h"
 #include "evaluate/floor_time.h"
+#include "evaluate/landmark_files.h"
 #include "io/mesh_loader.h"
 #include "map/pair_mapping.h"
 
@@ -71,64 +72,12 @@ namespace {
 namespace fs = std::filesystem;
 using namespace xparam;
 
-// ---------------------------------------------------------------------------------------------
-// Landmark files
-
-struct NamedId {
-  std::string name;
-  int id = -1;
-};
-
-struct NamedPoint {
-  std::string name;
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();
-};
-
-// Landmark vertex ids: .json {"name": id} in file order (named so); .pid first column;
-// otherwise the last integer of every non-empty line (".pinned" lines read "lk 847", plain lists
-// "5259"). Landmarks of the files without names are called "a0", "a1", ... in file order.
-std::vector<NamedId> read_ids(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::vector<NamedId> ids;
-  if (path.extension() == ".json") {
-    const nlohmann::ordered_json table = nlohmann::ordered_json::parse(in);
-    for (const auto& [name, value] : table.items()) ids.push_back({name, value.get<int>()});
-    return ids;
-  }
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream tokens(line);
-    std::vector<std::string> words;
-    for (std::string word; tokens >> word;) words.push_back(word);
-    if (words.empty()) continue;
-    const int id = std::stoi(path.extension() == ".pid" ? words.front() : words.back());
-    ids.push_back({"a" + std::to_string(ids.size()), id});
-  }
-  return ids;
-}
-
-// Landmark points: .json {"name": [x, y, z]} in file order (the FAUST scan landmarks).
-std::vector<NamedPoint> read_points(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  const nlohmann::ordered_json table = nlohmann::ordered_json::parse(in);
-  std::vector<NamedPoint> points;
-  for (const auto& [name, value] : table.items()) {
-    const std::vector<double> xyz = value.get<std::vector<double>>();
-    if (xyz.size() != 3) throw std::runtime_error(path.string() + ": \"" + name + "\" is not a 3-D point");
-    points.push_back({name, Eigen::Vector3d(xyz[0], xyz[1], xyz[2])});
-  }
-  return points;
-}
-
-AnchorSpec vertex_anchor(const std::string& name, int id, const fs::path& file) {
-  return {name, AnchorVertex{id}, file.string(), 0};
-}
-
-AnchorSpec point_anchor(const std::string& name, const Eigen::Vector3d& point, const fs::path& file) {
-  return {name, AnchorPosition{point}, file.string(), 0};
-}
+using evaluate::NamedId;
+using evaluate::NamedPoint;
+using evaluate::point_anchor;
+using evaluate::read_ids;
+using evaluate::read_points;
+using evaluate::vertex_anchor;
 
 // ---------------------------------------------------------------------------------------------
 // Pairs
@@ -347,11 +296,10 @@ PreparedPair prepare(const PairSpec& pair, const fs::path& data, DecimatedTarget
       }
       if (!dropped.empty()) p.notes.push_back("landmarks absent from the target's file: " + join(dropped));
     } else {
-      for (const NamedId& landmark : read_ids(data / pair.source_ids)) {
-        p.source_anchors.anchors.push_back(vertex_anchor(landmark.name, landmark.id, data / pair.source_ids));
-        p.target_anchors.anchors.push_back(point_anchor(
-            landmark.name, position(original.mesh, VertexHandle(landmark.id)), data / pair.target_ids));
-      }
+      evaluate::CarriedLandmarks carried = evaluate::landmarks_through_registration(
+          read_ids(data / pair.source_ids), original.mesh, data / pair.source_ids, data / pair.target_ids);
+      p.source_anchors = std::move(carried.source);
+      p.target_anchors = std::move(carried.target);
     }
     if (original.report.vertices != p.source.report.vertices)
       throw std::runtime_error("the template and the original target differ in vertex count");
