@@ -7,7 +7,7 @@
 // snapped onto the decimated surface, as a user places landmarks on a scan.
 //
 // Usage: xparam_measure_accuracy [--landmarks human|caesar] [--vertices N] [SUBJECT...]
-// (SUBJECT: tr_reg_010 ...; default 010 020 030 040 050). Prints one row per target and
+// (SUBJECT: tr_reg_010 ...; default: the six other subjects of ../shared/data, 010 020 030 040 080 090). Prints one row per target and
 // measurement (mm) and a summary against ISO 20685-1's limits. Reads ../shared/data; exits 0
 // with a note when it is absent.
 #include "core/anchors.h"
@@ -64,7 +64,7 @@ AnchorSet template_landmarks(const std::string& which, const fs::path& source, c
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   const fs::path source = XPARAM_SOURCE_DIR;
   const fs::path data = source / ".." / "shared" / "data";
   if (!fs::exists(data / "faust_registrations")) {
@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
     else if (arg == "--vertices" && i + 1 < argc) vertices = std::stoi(argv[++i]);
     else subjects.push_back(arg);
   }
-  if (subjects.empty()) subjects = {"tr_reg_010", "tr_reg_020", "tr_reg_030", "tr_reg_040", "tr_reg_050"};
+  if (subjects.empty()) subjects = {"tr_reg_010", "tr_reg_020", "tr_reg_030", "tr_reg_040", "tr_reg_080", "tr_reg_090"};
 
   const LoadedMesh smpl = load_mesh(source / "tests/data/human_man.obj");
   const AnchorSet template_anchors = template_landmarks(landmarks, source, data);
@@ -116,6 +116,7 @@ int main(int argc, char** argv) {
       std::printf("%s,%s,%.1f,%.1f,%+.1f,%.0f\n", subject.c_str(), name.c_str(), 1000.0 * truth[m],
                   1000.0 * through[m], error, iso_limit(name));
     }
+    std::fflush(stdout);
   }
   std::printf("\nmeasurement | ISO 20685-1 limit (mm) | mean |error| (mm) | max |error| (mm) | within the limit\n");
   for (const MeasurementDefinition& m : set.measurements) {
@@ -131,4 +132,7 @@ int main(int argc, char** argv) {
                 e.size());
   }
   return 0;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "xparam_measure_accuracy: %s\n", e.what());
+  return 1;
 }

@@ -68,7 +68,7 @@ TEST(MeasurementReader, ErrorsNameFileLineMeasurementAndFix) {
                      "expected a template vertex index in [0, 100), got 100");
   EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"plane_girth\", "
                                  "\"through\": [1, 2]}]}"),
-                     "m.json:2: measurement \"x\": expected a point name or {\"vertex\": i}, got 1");
+                     "m.json:2: measurement \"x\": \"through\": expected a point name or {\"vertex\": i}, got 1");
   EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"plane_girth\", "
                                  "\"through\": [{\"vertex\": 1}, {\"vertex\": 2}]}]}"),
                      "\"through\" must hold 1 point (with a normal) or 3 points");
@@ -82,7 +82,8 @@ TEST(MeasurementReader, ErrorsNameFileLineMeasurementAndFix) {
                                  "\"point\": \"CROTCH\", \"up\": [0, 1, 0], \"colour\": 1}]}"),
                      "m.json:2: measurement \"x\": unknown member \"colour\"");
   EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"straight\", "
-                                 "\"points\": [1, 2]},\n{\"name\": \"x\", \"type\": \"straight\", \"points\": [1, 2]}]}"),
+                                 "\"points\": [\"CROTCH\", \"HEAD_TOP\"]},\n{\"name\": \"x\", \"type\": \"straight\", "
+                                 "\"points\": [\"CROTCH\", \"HEAD_TOP\"]}]}"),
                      "m.json:3: measurement \"x\" is defined twice");
 }
 
