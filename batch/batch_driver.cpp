@@ -39,6 +39,7 @@ TargetOutcome outcome_from(const Row& row) {
   outcome.anchors_sha256 = row.anchors_sha256;
   outcome.metrics = row.metrics;
   outcome.stage_seconds = row.seconds;
+  outcome.measurements.assign(row.measurements.data(), row.measurements.data() + row.measurements.size());
   return outcome;
 }
 
@@ -186,6 +187,7 @@ BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, 
 
   BatchSummary summary;
   summary.archive = settings.archive;
+  summary.measurement_names = prepared.record.measurement_names;
   summary.shard = plan.shard;
   summary.threads = settings.threads;
   summary.discovered = plan.discovered;

@@ -66,6 +66,9 @@ struct TargetOutcome {
   TargetMetrics metrics;   ///< the metrics row
   double seconds = TargetMetrics::kNaN;  ///< wall-clock seconds of its job (total column); NaN when not run now
   StageSeconds stage_seconds = TargetRecord::filled_seconds();  ///< the timings row (NaN where a stage did not run)
+  /// The measurements row (#M, the template's measurement order; NaN when not available);
+  /// empty for a failed target of a run, which never measured
+  std::vector<double> measurements;
 };
 
 /// The outcome an archive row records (`ran` false; seconds NaN, its stage seconds kept).
@@ -103,6 +106,7 @@ struct BatchSummary {
   bool interrupted = false;           ///< settings.stop was raised during the run
   std::size_t not_run = 0;            ///< targets of the plan left unstarted by the interruption
   double seconds = 0.0;               ///< wall-clock seconds of the run
+  std::vector<std::string> measurement_names;  ///< the template's measurements, naming TargetOutcome::measurements
   /// The shard's targets that ran or were kept, by name (those left unstarted by an
   /// interruption are not among them: see not_run).
   std::vector<TargetOutcome> targets;

@@ -27,7 +27,8 @@ nlohmann::ordered_json reasons_of(const TargetOutcome& outcome) {
 
 }  // namespace
 
-nlohmann::ordered_json target_json(const TargetOutcome& outcome, bool with_ran) {
+nlohmann::ordered_json target_json(const TargetOutcome& outcome, bool with_ran,
+                                   const std::vector<std::string>& measurement_names) {
   nlohmann::ordered_json target;
   target["name"] = outcome.name;
   target["status"] = !outcome.ok ? "failed" : outcome.suspect ? "suspect" : "ok";
@@ -62,6 +63,14 @@ nlohmann::ordered_json target_json(const TargetOutcome& outcome, bool with_ran) 
   nlohmann::ordered_json seconds;
   for (std::size_t s = 0; s < kTimingStages.size(); ++s) seconds[kTimingStages[s]] = number_or_null(outcome.stage_seconds[s]);
   target["seconds"] = seconds;
+  if (!measurement_names.empty()) {
+    // A failed target of this run was never measured: every value is null, as in the archive.
+    nlohmann::ordered_json measurements;
+    for (std::size_t i = 0; i < measurement_names.size(); ++i)
+      measurements[measurement_names[i]] =
+          number_or_null(i < outcome.measurements.size() ? outcome.measurements[i] : TargetMetrics::kNaN);
+    target["measurements"] = measurements;
+  }
   return target;
 }
 
@@ -85,7 +94,8 @@ nlohmann::ordered_json summary_json(const BatchSummary& summary) {
   json["seconds"] = summary.seconds;
   json["targets_per_second"] = summary.targets_per_second();
   nlohmann::ordered_json targets = nlohmann::ordered_json::array();
-  for (const TargetOutcome& outcome : summary.targets) targets.push_back(target_json(outcome, true));
+  for (const TargetOutcome& outcome : summary.targets)
+    targets.push_back(target_json(outcome, true, summary.measurement_names));
   json["targets"] = targets;
   return json;
 }

@@ -13,6 +13,7 @@
 #include "io/mesh_loader.h"
 #include "io/sha256.h"
 #include "layout/anchor_swaps.h"
+#include "measure/body_measurements.h"
 
 #include <tbb/task_arena.h>
 
@@ -122,6 +123,10 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
     }
     record.curves.push_back(std::move(out));
   }
+  // The target's own surface, cut and measured at the images of the template's points.
+  const std::vector<double> measured =
+      measure_surface(prepared.measurements, target.loaded.mesh, record.remesh_vertices);
+  record.measurements = Eigen::Map<const Eigen::VectorXd>(measured.data(), static_cast<Eigen::Index>(measured.size()));
 
   TargetMetrics& metrics = record.metrics;
   metrics.e_l2 = mapping.distortion.all.e_l2;

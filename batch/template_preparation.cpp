@@ -8,7 +8,9 @@
 #include "io/anchor_reader.h"
 #include "io/archive_writer.h"
 #include "io/curve_reader.h"
+#include "io/measurement_reader.h"
 #include "io/sha256.h"
+#include "measure/body_measurements.h"
 
 #include <array>
 #include <string>
@@ -27,6 +29,19 @@ int nearest_input_vertex(const Mesh& mesh, const FileOrder& order, const Surface
     if (k++ == best) return order.file_vertex(v.idx());
   XP_ASSERT_MSG(false, "face " << point.face << " has fewer than three corners");
   return -1;
+}
+
+// The file vertex of every placed anchor: its own when given as a vertex, else the nearest.
+std::vector<int> anchor_file_vertices(const PreparedTemplate& prepared, const PlacedAnchors& placed) {
+  std::vector<int> vertices;
+  for (std::size_t a = 0; a < placed.anchors.size(); ++a) {
+    const auto& location = prepared.anchors.anchors[a].location;
+    vertices.push_back(std::holds_alternative<AnchorVertex>(location)
+                           ? std::get<AnchorVertex>(location).index
+                           : nearest_input_vertex(prepared.loaded.mesh, prepared.loaded.file_order,
+                                                  placed.anchors[a].input_point));
+  }
+  return vertices;
 }
 
 TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate& prepared,
@@ -52,17 +67,13 @@ TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate&
     record.faces.row(f.idx()) << corners[0], corners[1], corners[2];
   }
 
-  for (std::size_t a = 0; a < placed.anchors.size(); ++a) {
-    record.anchor_names.push_back(placed.anchors[a].name);
-    const auto& location = prepared.anchors.anchors[a].location;
-    record.anchor_vertices.push_back(std::holds_alternative<AnchorVertex>(location)
-                                         ? std::get<AnchorVertex>(location).index
-                                         : nearest_input_vertex(mesh, order, placed.anchors[a].input_point));
-  }
+  for (const PlacedAnchor& anchor : placed.anchors) record.anchor_names.push_back(anchor.name);
+  record.anchor_vertices = anchor_file_vertices(prepared, placed);
 
   for (const FeatureCurve& curve : prepared.curves) {
     TemplateCurve out;
     out.name = curve.name;
+    out.closed = curve.closed;
     out.bary.resize(static_cast<Eigen::Index>(curve.points.size()), 3);
     for (std::size_t p = 0; p < curve.points.size(); ++p) {
       out.face.push_back(curve.points[p].face);
@@ -70,6 +81,17 @@ TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate&
           to_file_order(order, curve.points[p].face, curve.points[p].bary).transpose();
     }
     record.curves.push_back(std::move(out));
+  }
+
+  if (!inputs.measurements.empty()) {
+    record.measurements_file = inputs.measurements.string();
+    record.measurements_sha256 = sha256_file_hex(inputs.measurements);
+    const std::vector<double> values = measure_surface(prepared.measurements, mesh, record.vertices);
+    record.measurement_values = Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+    for (const MeasurementDefinition& m : prepared.measurements.measurements) {
+      record.measurement_names.push_back(m.name);
+      record.measurement_units.push_back(prepared.measurements.unit);
+    }
   }
   validate_template_record(record);
   return record;
@@ -94,6 +116,12 @@ PreparedTemplate prepare_template(const TemplateInputs& inputs) {
   const PlacedAnchors placed = place_anchors(refined, prepared.loaded.mesh, prepared.anchors);
   if (!inputs.curves.empty())
     prepared.curves = validate_curves(curves_in_mesh_order(read_curves(inputs.curves), order), prepared.loaded.mesh);
+  if (!inputs.measurements.empty()) {
+    // Points name the anchors as placed on the template (file vertices) or file vertices.
+    MeasurementTemplate on{{}, anchor_file_vertices(prepared, placed), order.file_vertices};
+    for (const PlacedAnchor& anchor : placed.anchors) on.anchor_names.push_back(anchor.name);
+    prepared.measurements = read_measurements(inputs.measurements, on);
+  }
   prepared.record = make_record(inputs, prepared, placed);
   return prepared;
 }

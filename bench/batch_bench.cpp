@@ -44,7 +44,7 @@ void reset_peak_memory() {
 void BM_BatchSampleTargets(benchmark::State& state) {
   const auto threads = static_cast<int>(state.range(0));
   const xparam::PreparedTemplate prepared = xparam::prepare_template(
-      {data("human_man.obj"), data("human.anchors.json"), data("human_man.curves.json"), {}});
+      {data("human_man.obj"), data("human.anchors.json"), data("human_man.curves.json"), {}, {}});
   const xparam::BatchPlan plan =
       xparam::plan_batch(xparam::discover_targets(data("sample_targets")), {}, {}, false);
   const fs::path dir = fs::temp_directory_path() / ("xparam_batch_bench_" + std::to_string(getpid()));

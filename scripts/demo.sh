@@ -11,7 +11,7 @@ mkdir -p "$out"
 data="$root/tests/data"
 set +e
 "$xparam" batch --template "$data/human_man.obj" --template-anchors "$data/human.anchors.json" \
-  --curves "$data/human_man.curves.json" --targets "$data/sample_targets" --out "$out/sample.h5" \
+  --curves "$data/human_man.curves.json" --measurements "$data/human.measurements.json" --targets "$data/sample_targets" --out "$out/sample.h5" \
   --summary "$out/sample.summary.json" -j "$(nproc)" --force  # the demo's own output: start over
 status=$?
 set -e
@@ -28,6 +28,7 @@ The archive is $out/sample.h5 (summary: $out/sample.summary.json).
 Look at it with:
   $xparam inspect $out/sample.h5 --json
   $xparam export $out/sample.h5 --target NAME --out remesh.ply     # one remeshed target
+  $xparam export $out/sample.h5 --measurements --out body.csv      # girths and lengths of every target
   h5ls -r $out/sample.h5                                            # the datasets (hdf5-tools)
   paraview $out/sample.xdmf                                         # step through the remeshed targets
 MSG

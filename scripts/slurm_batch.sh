@@ -18,6 +18,7 @@
 # Configuration (environment; exported into the jobs by sbatch):
 #   XPARAM_TEMPLATE, XPARAM_TEMPLATE_ANCHORS, XPARAM_TARGETS, XPARAM_OUT   required
 #   XPARAM_CURVES        feature curves of the template (optional)
+#   XPARAM_MEASUREMENTS  measurements of the template (optional, docs/measurements.md)
 #   XPARAM_SHARDS        N (default: SLURM_ARRAY_TASK_COUNT inside a task, else 4 like --array above)
 #   XPARAM_THREADS       -j of each shard (default: SLURM_CPUS_PER_TASK, else 1)
 #   XPARAM_OPTIONS       further options of `xparam batch` for every shard, split at spaces
@@ -67,6 +68,7 @@ run_shard() {
                  --resume --shard "$task/$shards" --out "$shard_dir/shard_$task.h5"
                  --summary "$shard_dir/shard_$task.summary.json")
   [[ -n ${XPARAM_CURVES:-} ]] && options+=(--curves "$XPARAM_CURVES")
+  [[ -n ${XPARAM_MEASUREMENTS:-} ]] && options+=(--measurements "$XPARAM_MEASUREMENTS")
   if [[ -n ${XPARAM_OPTIONS:-} ]]; then
     local extra
     read -ra extra <<< "$XPARAM_OPTIONS"

@@ -41,6 +41,7 @@ struct BatchOptions {
   std::string template_mesh;
   std::string template_anchors;
   std::string curves;
+  std::string measurements;  ///< --measurements: the template's measurement file
   std::string targets;
   AnchorLookup anchors;  ///< --anchors-dir, --anchors-pattern
   bool common_anchors = false;  ///< --common-anchors
@@ -211,7 +212,7 @@ int run_command(const BatchOptions& options) {
   PreparedTemplate prepared;
   std::optional<CommonAnchors> common;  // --common-anchors
   try {
-    TemplateInputs inputs{options.template_mesh, options.template_anchors, options.curves, {}};
+    TemplateInputs inputs{options.template_mesh, options.template_anchors, options.curves, {}, options.measurements};
     if (options.common_anchors) {
       common = common_anchor_names(read_anchors(options.template_anchors), discovered);
       inputs.only_anchors = common->names;
@@ -322,6 +323,10 @@ void add_batch_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   batch->add_option("--curves", options->curves, "Feature curves on the template (JSON) to transfer")
+      ->check(CLI::ExistingFile);
+  batch->add_option("--measurements", options->measurements,
+                    "Measurements of the template (JSON, docs/measurements.md) to take on every target, e.g. "
+                    "tests/data/human.measurements.json")
       ->check(CLI::ExistingFile);
   batch->add_option("--targets", options->targets, "Folder of targets, or a manifest JSON file")
       ->required()

@@ -52,7 +52,7 @@ void print_target(const ArchiveReader& reader, const std::string& name, bool jso
   const nlohmann::ordered_json diagnosis =
       t.diagnosis.empty() ? nlohmann::ordered_json::object() : nlohmann::ordered_json::parse(t.diagnosis, nullptr, false);
   if (json) {
-    nlohmann::ordered_json out = target_json(outcome_of(t), false);
+    nlohmann::ordered_json out = target_json(outcome_of(t), false, reader.measurement_names());
     out["diagnosis"] = diagnosis;
     std::cout << out.dump(2) << "\n";
     return;
@@ -66,6 +66,10 @@ void print_target(const ArchiveReader& reader, const std::string& name, bool jso
   std::cout << "  E_L2 " << figure(m.e_l2) << ", E_ang " << figure(m.e_ang) << ", folded faces " << count(m.flipped_faces)
             << " (" << count(m.strictly_folded_faces) << " by the strict count), area ratio " << figure(m.area_ratio)
             << ", released anchors " << count(m.released_anchors) << ", " << seconds_text(t.seconds.back()) << "\n";
+  const std::vector<std::string>& names = reader.measurement_names();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    std::cout << (i == 0 ? "  measurements: " : ", ") << names[i] << " " << figure(t.measurements[i]) << " "
+              << reader.measurement_units()[i] << (i + 1 == names.size() ? "\n" : "");
   print_diagnosis(diagnosis, std::cout);
 }
 
@@ -100,14 +104,20 @@ void run_inspect(const InspectOptions& options) {
                        {"vertices", reader.n_vertices()},
                        {"faces", reader.n_faces()},
                        {"anchors", t.anchor_names.size()},
-                       {"curves", t.curves.size()}};
+                       {"curves", t.curves.size()},
+                       {"measurements_file", t.measurements_file}};
+    nlohmann::ordered_json measured = nlohmann::ordered_json::object();
+    for (std::size_t i = 0; i < t.measurement_names.size(); ++i)
+      measured[t.measurement_names[i]] = {{"value", t.measurement_values[static_cast<Eigen::Index>(i)]},
+                                          {"unit", t.measurement_units[i]}};
+    out["template"]["measurements"] = measured;
     // The counts under the summary's names (schemas/summary.schema.json): succeeded = ok + suspect.
     out["succeeded"] = ok + suspect;
     out["suspect"] = suspect;
     out["failed"] = failed;
     out["targets"] = nlohmann::ordered_json::array();
     for (const ArchiveTargetSummary& target : reader.targets())
-      out["targets"].push_back(target_json(outcome_of(target), false));
+      out["targets"].push_back(target_json(outcome_of(target), false, t.measurement_names));
     std::cout << out.dump(2) << "\n";
     return;
   }
@@ -116,7 +126,11 @@ void run_inspect(const InspectOptions& options) {
             << p.xparam_version << " (" << p.git_revision << ")\n"
             << "options: " << p.options_json << "\n"
             << "template: " << t.mesh_file << ", " << reader.n_vertices() << " vertices, " << reader.n_faces()
-            << " faces, " << t.anchor_names.size() << " anchors, " << t.curves.size() << " curves\n"
+            << " faces, " << t.anchor_names.size() << " anchors, " << t.curves.size() << " curves, "
+            << plural(t.measurement_names.size(), "measurement")
+            << (t.measurements_file.empty() ? "" : " (" + t.measurements_file + "; per target: --target NAME, or "
+                                                   "export --measurements)")
+            << "\n"
             << plural(reader.targets().size(), "target") << ": " << ok << " ok, " << suspect << " suspect, " << failed
             << " failed\n";
   if (reader.targets().empty()) return;

@@ -20,12 +20,6 @@ using Json = nlohmann::ordered_json;
 
 std::string in_quotes(const std::string& name) { return "\"" + name + "\""; }
 
-[[noreturn]] void fail_at(const std::string& source, int line, const std::string& what) {
-  std::string where = source;
-  if (line > 0) where.append(":").append(std::to_string(line));
-  throw InputError(where.append(": ").append(what));
-}
-
 // ---------------------------------------------------------------------------------------
 // Numbers, shared by the text and picked-points readers.
 
@@ -491,6 +485,12 @@ std::vector<std::string> line_tokens(const std::string& line, const std::string&
 }
 
 }  // namespace
+
+[[noreturn]] void fail_at(const std::string& source, int line, const std::string& what) {
+  std::string where = source;
+  if (line > 0) where.append(":").append(std::to_string(line));
+  throw InputError(where.append(": ").append(what));
+}
 
 std::string json_pointer_token(const std::string& name) {
   std::string token;

@@ -65,6 +65,10 @@ inline constexpr std::size_t kMaxJsonDepth = 64;
 /// line M)" or "source:line: JSON nested deeper than 64 levels ..."
 LocatedJson parse_located_json(const std::string& text, const std::string& source);
 
+/// Throw InputError "source:line: what" ("source: what" when line is 0): how every reader of a
+/// located file reports a problem.
+[[noreturn]] void fail_at(const std::string& source, int line, const std::string& what);
+
 /// `name` escaped for use as one JSON pointer token ("~" -> "~0", "/" -> "~1").
 std::string json_pointer_token(const std::string& name);
 

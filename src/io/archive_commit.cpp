@@ -118,10 +118,13 @@ bool same_template(const TemplateRecord& a, const TemplateRecord& b) {
   if (a.mesh_file != b.mesh_file || a.anchors_file != b.anchors_file || a.curves_file != b.curves_file ||
       a.mesh_sha256 != b.mesh_sha256 || a.anchors_sha256 != b.anchors_sha256 || a.curves_sha256 != b.curves_sha256 ||
       !same_matrix(a.vertices, b.vertices) || !same_matrix(a.faces, b.faces) || a.anchor_names != b.anchor_names ||
-      a.anchor_vertices != b.anchor_vertices || a.curves.size() != b.curves.size())
+      a.anchor_vertices != b.anchor_vertices || a.curves.size() != b.curves.size() ||
+      a.measurements_file != b.measurements_file || a.measurements_sha256 != b.measurements_sha256 ||
+      a.measurement_names != b.measurement_names || a.measurement_units != b.measurement_units)
     return false;
   for (std::size_t c = 0; c < a.curves.size(); ++c)
     if (a.curves[c].name != b.curves[c].name || a.curves[c].face != b.curves[c].face ||
+        a.curves[c].closed != b.curves[c].closed ||
         !same_matrix(a.curves[c].bary, b.curves[c].bary))
       return false;
   return true;

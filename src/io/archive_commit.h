@@ -92,7 +92,8 @@ class BatchArchive {
   std::set<std::string> committed_;
 };
 
-/// Whether two template records are equal (every array exactly, every string).
+/// Whether two template records are equal (every array exactly, every string; the measurements
+/// by file digest, names and units: their values follow from the file and the mesh).
 bool same_template(const TemplateRecord& a, const TemplateRecord& b);
 
 }  // namespace xparam

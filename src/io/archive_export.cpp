@@ -59,4 +59,28 @@ void export_remesh(const std::filesystem::path& archive, const std::string& name
   write_ply(out, vertices, triangles, attributes);
 }
 
+void export_curves(const std::filesystem::path& archive, const std::string& name, const std::filesystem::path& out) {
+  if (out.extension() != ".obj") throw InputError(out.string() + ": curves are written as OBJ polylines (use .obj)");
+  const ArchiveReader reader(archive);
+  const std::optional<std::size_t> row = reader.find(name);
+  if (!row)
+    throw ArchiveError(archive.string() + ": no target named '" + name + "' (" +
+                       std::to_string(reader.targets().size()) + " targets; `xparam inspect` lists them)");
+  const TemplateRecord t = reader.read_template();
+  if (t.curves.empty())
+    throw ArchiveError(archive.string() + ": the archive holds no curves; run the batch with --curves FILE");
+  const TargetRecord target = reader.read_target(*row);
+  if (!target.ok) throw ArchiveError(archive.string() + ": target '" + name + "' failed, no curves: " + target.error);
+  std::vector<std::vector<Eigen::Vector3d>> polylines;
+  for (std::size_t c = 0; c < target.curves.size(); ++c) {
+    const Eigen::MatrixX3d& xyz = target.curves[c].xyz;
+    if (xyz.rows() < 2) continue;
+    std::vector<Eigen::Vector3d> points;
+    for (Eigen::Index p = 0; p < xyz.rows(); ++p) points.push_back(xyz.row(p).transpose());
+    if (t.curves[c].closed) points.push_back(points.front());
+    polylines.push_back(std::move(points));
+  }
+  write_polylines_obj(out, polylines);
+}
+
 }  // namespace xparam

@@ -17,4 +17,11 @@ namespace xparam {
 ///        (naming the archive) or the target failed (quoting its error).
 void export_remesh(const std::filesystem::path& archive, const std::string& name, const std::filesystem::path& out);
 
+/// Write the feature curves transferred onto target `name` of `archive` to `out` as OBJ polylines
+/// (io/mesh_writer.h write_polylines_obj: one `l` element per curve, in the template's curve order; a
+/// closed curve ends at its first point again; a curve of fewer than 2 points is left out).
+/// \throw InputError for another extension than .obj; ArchiveError as export_remesh, or when the
+///        archive has no curves
+void export_curves(const std::filesystem::path& archive, const std::string& name, const std::filesystem::path& out);
+
 }  // namespace xparam

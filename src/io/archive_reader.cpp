@@ -41,6 +41,7 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
     n_faces_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_faces"));
     n_curves_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_curves"));
     n_anchors_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_anchors"));
+    n_measurements_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_measurements"));
     if (H5Aexists(file, "options_json") > 0) provenance_.options_json = h5::read_string_attribute(file, "options_json");
   } else {
     provenance_ = {h5::read_string_attribute(file, "xparam_version"),
@@ -50,6 +51,9 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
     n_faces_ = expect_shape(h5::open_dataset(template_group.get(), "faces").get(), 2)[0];
     n_curves_ = h5::read_strings(template_group.get(), "curves/names").size();
     n_anchors_ = h5::read_strings(template_group.get(), "anchor_names").size();
+    measurement_names_ = h5::read_strings(template_group.get(), "measurement_names");
+    measurement_units_ = h5::read_strings(template_group.get(), "measurement_units");
+    n_measurements_ = measurement_names_.size();
   }
 
   const h5::Handle targets = h5::open_group(file, "targets");
@@ -72,6 +76,18 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
       throw ArchiveError(h5::describe(dataset) + ": row count differs from /targets/name");
   if (h5::row_size(timings_dataset.get()) != kTimingStages.size())
     throw ArchiveError(h5::describe(timings_dataset.get()) + ": expected one column per timing stage");
+  // (N, M) measurements, present when the template has a measurement set.
+  std::vector<double> measurements;
+  if (h5::exists(targets.get(), "measurements")) {
+    const h5::Handle dataset = h5::open_dataset(targets.get(), "measurements");
+    const std::vector<hsize_t> dims = expect_shape(dataset.get(), 2);
+    if (dims[0] != n || dims[1] != n_measurements_)
+      throw ArchiveError(h5::describe(dataset.get()) + ": expected " + std::to_string(n) + " x " +
+                         std::to_string(n_measurements_) + " values (targets x template measurements)");
+    measurements = h5::read_rows<double>(dataset.get(), 0, n);
+  } else if (n_measurements_ > 0) {
+    throw ArchiveError(path.string() + ": /targets/measurements is missing");
+  }
   const h5::Handle status_type = archive_layout::status_type();
   const h5::Handle metrics_type = archive_layout::metrics_type(false);
   h5::read_rows(status_dataset.get(), status_type.get(), 0, n, status.data());
@@ -97,6 +113,8 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
     t.metrics = archive_layout::from_row(metrics[i]);
     std::copy_n(timings.begin() + static_cast<std::ptrdiff_t>(i * kTimingStages.size()), kTimingStages.size(),
                 t.seconds.begin());
+    t.measurements.assign(measurements.begin() + static_cast<std::ptrdiff_t>(i * n_measurements_),
+                          measurements.begin() + static_cast<std::ptrdiff_t>((i + 1) * n_measurements_));
   }
 }
 
@@ -132,8 +150,10 @@ TemplateRecord ArchiveReader::read_template() const {
       h5::read_all<std::int64_t>(h5::open_dataset(group.get(), "curves/offsets").get());
   const std::vector<std::int32_t> face = h5::read_all<std::int32_t>(h5::open_dataset(group.get(), "curves/face").get());
   const std::vector<double> bary = h5::read_all<double>(h5::open_dataset(group.get(), "curves/bary").get());
+  const std::vector<std::int32_t> closed =
+      h5::read_all<std::int32_t>(h5::open_dataset(group.get(), "curves/closed").get());
   if (offsets.size() != names.size() + 1 || offsets.back() != static_cast<std::int64_t>(face.size()) ||
-      bary.size() != 3 * face.size())
+      bary.size() != 3 * face.size() || closed.size() != names.size())
     throw ArchiveError(path_.string() + ": /template/curves offsets do not match the points");
   for (std::size_t c = 0; c < names.size(); ++c) {
     const auto first = static_cast<std::size_t>(offsets[c]);
@@ -142,8 +162,18 @@ TemplateRecord ArchiveReader::read_template() const {
     curve.name = names[c];
     curve.face.assign(face.begin() + static_cast<std::ptrdiff_t>(first), face.begin() + static_cast<std::ptrdiff_t>(end));
     curve.bary = to_matrix(bary, first, end - first);
+    curve.closed = closed.at(c) != 0;
     t.curves.push_back(std::move(curve));
   }
+
+  t.measurements_file = h5::read_string_attribute(group.get(), "measurements_file");
+  t.measurements_sha256 = h5::read_string_attribute(group.get(), "measurements_sha256");
+  t.measurement_names = h5::read_strings(group.get(), "measurement_names");
+  t.measurement_units = h5::read_strings(group.get(), "measurement_units");
+  const std::vector<double> values = h5::read_all<double>(h5::open_dataset(group.get(), "measurement_values").get());
+  if (values.size() != t.measurement_names.size() || t.measurement_units.size() != t.measurement_names.size())
+    throw ArchiveError(path_.string() + ": /template measurement names, units and values differ in length");
+  t.measurement_values = Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
   return t;
 }
 
@@ -165,6 +195,7 @@ TargetRecord ArchiveReader::read_target(std::size_t row) const {
   t.metrics = s.metrics;
   t.seconds = s.seconds;
   if (!s.ok) return t;
+  t.measurements = Eigen::Map<const Eigen::VectorXd>(s.measurements.data(), static_cast<Eigen::Index>(s.measurements.size()));
 
   const h5::Handle group = h5::open_group(file_.get(), "targets");
   const auto rows_of = [&](const char* name) { return h5::open_dataset(group.get(), name); };

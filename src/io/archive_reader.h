@@ -32,6 +32,9 @@ struct ArchiveTargetSummary {
   /// for a part written before parts recorded them).
   std::string options_json;
   TargetMetrics metrics;       ///< the metrics table row
+  /// #M the target's measurements (/targets/measurements; NaN for a failed target), in the
+  /// order of the template's measurement_names
+  std::vector<double> measurements;
   StageSeconds seconds{};      ///< the timings row
 };
 
@@ -53,6 +56,12 @@ class ArchiveReader {
   std::size_t n_vertices() const { return n_vertices_; }
   /// Template face count (#F of every remesh).
   std::size_t n_faces() const { return n_faces_; }
+  /// Template measurement count (#M columns of /targets/measurements).
+  std::size_t n_measurements() const { return n_measurements_; }
+  /// The template's measurement names (#M; empty for a part file, which has no template).
+  const std::vector<std::string>& measurement_names() const { return measurement_names_; }
+  /// The unit of each measurement (#M; empty for a part file).
+  const std::vector<std::string>& measurement_units() const { return measurement_units_; }
   /// Targets in archive (name) order.
   const std::vector<ArchiveTargetSummary>& targets() const { return targets_; }
   /// Row of the target called `name`, if present.
@@ -76,6 +85,8 @@ class ArchiveReader {
   std::size_t n_faces_ = 0;
   std::size_t n_curves_ = 0;
   std::size_t n_anchors_ = 0;
+  std::size_t n_measurements_ = 0;
+  std::vector<std::string> measurement_names_, measurement_units_;
   std::vector<ArchiveTargetSummary> targets_;
 };
 

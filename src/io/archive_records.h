@@ -19,7 +19,7 @@ namespace xparam {
 
 /// Version of the archive layout, stored as the root attribute `schema_version`.
 /// Bump it whenever a dataset is added, removed, renamed or changes meaning.
-inline constexpr int kArchiveSchemaVersion = 3;  // 2: released anchors; 3: suspect, diagnosis, strict folds, scan intake columns
+inline constexpr int kArchiveSchemaVersion = 4;  // 2: released anchors; 3: suspect, diagnosis, strict folds, scan intake columns; 4: measurements
 
 /// The stages whose wall-clock seconds are recorded per target, in column order of
 /// /targets/timings.
@@ -34,6 +34,7 @@ struct TemplateCurve {
   std::string name;          ///< unique curve name
   std::vector<int> face;     ///< #P template face per point
   Eigen::MatrixX3d bary;     ///< #P x 3 barycentric coordinates in that face
+  bool closed = false;       ///< the last point joins the first
 };
 
 /// The template mesh as used for every target (after anchor insertion), its anchors and curves.
@@ -49,6 +50,11 @@ struct TemplateRecord {
   std::vector<std::string> anchor_names;  ///< #A anchor names
   std::vector<int> anchor_vertices;       ///< #A template vertex of each anchor
   std::vector<TemplateCurve> curves;      ///< #C feature curves
+  std::string measurements_file;    ///< measurement file (docs/measurements.md), empty when none
+  std::string measurements_sha256;  ///< SHA-256 (hex) of measurements_file's bytes, empty when none
+  std::vector<std::string> measurement_names;  ///< #M measurement names, in file order
+  std::vector<std::string> measurement_units;  ///< #M the unit of each value (the file's length unit)
+  Eigen::VectorXd measurement_values;          ///< #M the measurements on the template itself
 };
 
 /// One template curve carried onto a target: points on the target's input mesh.
@@ -112,6 +118,9 @@ struct TargetRecord {
   /// distance from the remesh's point at the template's landmark to the target's landmark
   Eigen::VectorXd anchor_miss;
   std::vector<TransferredCurve> curves;   ///< #C, in the order of TemplateRecord::curves
+  /// #M measurements on the target through the map, in the order of
+  /// TemplateRecord::measurement_names; NaN where one has no value (measure/body_measurements.h)
+  Eigen::VectorXd measurements;
   TargetMetrics metrics;                  ///< the metrics table row
   StageSeconds seconds = filled_seconds();  ///< wall-clock seconds per stage (not deterministic)
 

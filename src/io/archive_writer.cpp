@@ -61,8 +61,10 @@ void write_template(hid_t file, const TemplateRecord& t, int deflate_level) {
   std::vector<std::int64_t> offsets{0};
   std::vector<std::int32_t> point_face;
   std::vector<double> point_bary;
+  std::vector<std::int32_t> closed;
   for (const TemplateCurve& curve : t.curves) {
     names.push_back(curve.name);
+    closed.push_back(curve.closed ? 1 : 0);
     offsets.push_back(offsets.back() + static_cast<std::int64_t>(curve.face.size()));
     point_face.insert(point_face.end(), curve.face.begin(), curve.face.end());
     const RowMajorX3d bary = curve.bary;
@@ -72,7 +74,16 @@ void write_template(hid_t file, const TemplateRecord& t, int deflate_level) {
   write_whole<std::int64_t>(curves.get(), "offsets", {offsets.size()}, offsets.data(), deflate_level);
   write_whole<std::int32_t>(curves.get(), "face", {point_face.size()}, point_face.data(), deflate_level);
   write_whole<double>(curves.get(), "bary", {point_face.size(), 3}, point_bary.data(), deflate_level);
+  write_whole<std::int32_t>(curves.get(), "closed", {closed.size()}, closed.data(), deflate_level);
   curves.close();
+
+  // The measurement set: names, units and the template's own values (#M, possibly 0).
+  h5::write_attribute(group.get(), "measurements_file", t.measurements_file);
+  h5::write_attribute(group.get(), "measurements_sha256", t.measurements_sha256);
+  h5::write_strings(group.get(), "measurement_names", t.measurement_names);
+  h5::write_strings(group.get(), "measurement_units", t.measurement_units);
+  write_whole<double>(group.get(), "measurement_values", {static_cast<hsize_t>(t.measurement_values.size())},
+                      t.measurement_values.data(), deflate_level);
   group.close();
 }
 
@@ -84,7 +95,8 @@ class TargetTables {
         n_vertices_(shape.n_vertices),
         n_faces_(shape.n_faces),
         n_curves_(shape.n_curves),
-        n_anchors_(shape.n_anchors) {
+        n_anchors_(shape.n_anchors),
+        n_measurements_(shape.n_measurements) {
     const hsize_t n = count;
     const h5::Storage per_subject{1, settings.deflate_level};
     const h5::Storage table{archive_layout::kTableChunkRows, settings.deflate_level};
@@ -103,6 +115,9 @@ class TargetTables {
     h5::write_attribute(timings_.get(), "unit", std::string("seconds"));
     const h5::Handle status_file_type = archive_layout::status_type();
     status_ = h5::create_dataset(group_.get(), "status", status_file_type.get(), {n}, table);
+    // (N, M) only when the template has measurements: a chunk cannot be 0 wide.
+    if (n_measurements_ > 0)
+      measurements_ = h5::create_dataset<double>(group_.get(), "measurements", {n, n_measurements_}, table);
 
     curves_ = h5::create_group(group_.get(), "curves");
     curve_offsets_ = h5::create_dataset<std::int64_t>(curves_.get(), "offsets", {n, n_curves_ + 1}, table);
@@ -137,6 +152,7 @@ class TargetTables {
       write_row<double>(face_l2_stretch_, row, target.face_l2_stretch);
       write_row<double>(face_angle_distortion_, row, target.face_angle_distortion);
       write_row<double>(anchor_miss_, row, target.anchor_miss);
+      if (n_measurements_ > 0) write_row<double>(measurements_, row, target.measurements);
     } else {
       // Failed targets keep their row so indices line up with /targets/name.
       const std::vector<double> nan_vertices(n_vertices_ * 3, kNaN);
@@ -151,8 +167,17 @@ class TargetTables {
       h5::write_rows(face_angle_distortion_.get(), row, 1, nan_faces.data());
       const std::vector<double> nan_anchors(n_anchors_, kNaN);
       h5::write_rows(anchor_miss_.get(), row, 1, nan_anchors.data());
+      const std::vector<double> nan_measurements(n_measurements_, kNaN);
+      if (n_measurements_ > 0) h5::write_rows(measurements_.get(), row, 1, nan_measurements.data());
     }
     write_curves(row, target);
+  }
+
+  // Name the measurement columns and give their units (an archive's; a part has no template).
+  void describe_measurements(const std::vector<std::string>& names, const std::vector<std::string>& units) {
+    if (n_measurements_ == 0) return;
+    h5::write_attribute(measurements_.get(), "names", names);
+    h5::write_attribute(measurements_.get(), "units", units);
   }
 
   // Write the string columns and close every dataset and group (checked: a close flushes, and
@@ -166,7 +191,7 @@ class TargetTables {
     h5::write_strings(group_.get(), "mesh_sha256", mesh_sha256_);
     h5::write_strings(group_.get(), "anchors_sha256", anchors_sha256_);
     for (h5::Handle* handle : {&remesh_vertices_, &corr_face_, &corr_bary_, &face_patch_, &face_l2_stretch_,
-                               &face_angle_distortion_, &anchor_miss_, &metrics_, &timings_, &status_,
+                               &face_angle_distortion_, &anchor_miss_, &measurements_, &metrics_, &timings_, &status_,
                                &curve_offsets_, &curve_face_, &curve_bary_, &curve_xyz_, &curves_, &group_})
       handle->close();
   }
@@ -221,8 +246,9 @@ class TargetTables {
   hsize_t n_faces_;
   std::size_t n_curves_;
   hsize_t n_anchors_;
+  hsize_t n_measurements_;
   h5::Handle remesh_vertices_, corr_face_, corr_bary_, face_patch_, face_l2_stretch_, face_angle_distortion_;
-  h5::Handle anchor_miss_;
+  h5::Handle anchor_miss_, measurements_;
   h5::Handle metrics_, timings_, status_;
   h5::Handle curves_, curve_offsets_, curve_face_, curve_bary_, curve_xyz_;
   std::int64_t curve_points_ = 0;
@@ -238,7 +264,7 @@ void check_unique(const std::vector<std::string>& names, const std::string& wher
 
 ArchiveShape shape_of(const TemplateRecord& t) {
   return {static_cast<std::size_t>(t.vertices.rows()), static_cast<std::size_t>(t.faces.rows()), t.curves.size(),
-          t.anchor_names.size()};
+          t.anchor_names.size(), t.measurement_names.size()};
 }
 
 void validate_template_record(const TemplateRecord& t) {
@@ -261,6 +287,12 @@ void validate_template_record(const TemplateRecord& t) {
       require(f >= 0 && f < t.faces.rows(), where + " curve " + curve.name, "face outside the template");
   }
   check_unique(curve_names, where + " curves");
+  check_unique(t.measurement_names, where + " measurements");
+  require(t.measurement_units.size() == t.measurement_names.size() &&
+              static_cast<std::size_t>(t.measurement_values.size()) == t.measurement_names.size(),
+          where, count_text(t.measurement_names.size(), "measurement names") + " but " +
+                     count_text(t.measurement_units.size(), "units") + " and " +
+                     count_text(static_cast<std::size_t>(t.measurement_values.size()), "values"));
 }
 
 void validate_target_record(const TemplateRecord& t, const TargetRecord& target) {
@@ -291,6 +323,7 @@ void validate_target_record(const ArchiveShape& shape, const TargetRecord& targe
   expect(static_cast<Eigen::Index>(target.curves.size()), static_cast<Eigen::Index>(shape.n_curves), "curves",
          "curves");
   expect(target.anchor_miss.size(), static_cast<Eigen::Index>(shape.n_anchors), "anchor_miss", "anchors");
+  expect(target.measurements.size(), static_cast<Eigen::Index>(shape.n_measurements), "measurements", "measurements");
   for (std::size_t c = 0; c < target.curves.size(); ++c) {
     const TransferredCurve& curve = target.curves[c];
     const auto points = static_cast<Eigen::Index>(curve.face.size());
@@ -316,6 +349,7 @@ void write_archive(const std::filesystem::path& path, const TemplateRecord& temp
     write_template(file.get(), template_record, settings.deflate_level);
 
     TargetTables tables(file.get(), shape_of(template_record), count, settings);
+    tables.describe_measurements(template_record.measurement_names, template_record.measurement_units);
     std::string previous;
     for (std::size_t i = 0; i < count; ++i) {
       const TargetRecord target = load(i);
@@ -358,6 +392,7 @@ void write_target_part(const std::filesystem::path& path, const ArchiveShape& sh
     h5::write_attribute(file.get(), "n_faces", static_cast<std::int64_t>(shape.n_faces));
     h5::write_attribute(file.get(), "n_curves", static_cast<std::int64_t>(shape.n_curves));
     h5::write_attribute(file.get(), "n_anchors", static_cast<std::int64_t>(shape.n_anchors));
+    h5::write_attribute(file.get(), "n_measurements", static_cast<std::int64_t>(shape.n_measurements));
     h5::write_attribute(file.get(), "options_json", options_json);
     TargetTables tables(file.get(), shape, 1, settings);
     tables.write(0, target);

@@ -28,6 +28,7 @@ struct ArchiveShape {
   std::size_t n_faces = 0;     ///< template faces (#F)
   std::size_t n_curves = 0;    ///< template curves (#C)
   std::size_t n_anchors = 0;   ///< template anchors (#A)
+  std::size_t n_measurements = 0;  ///< template measurements (#M)
 };
 
 /// The shape of `template_record`.
@@ -62,7 +63,7 @@ void validate_target_record(const ArchiveShape& shape, const TargetRecord& targe
 
 /// Write one target alone as a "part" file (the unit of the commit protocol of
 /// io/archive_commit.h): root attributes format = "xparam-archive-part", schema_version,
-/// n_vertices, n_faces, n_curves, options_json (the options the target ran with), and a
+/// n_vertices, n_faces, n_curves, n_measurements, options_json (the options the target ran with), and a
 /// /targets group with one row, laid out as in an archive. Written to "<path>.tmp", synced
 /// and renamed, so `path` is complete or absent.
 void write_target_part(const std::filesystem::path& path, const ArchiveShape& shape, const TargetRecord& target,

@@ -39,11 +39,7 @@ class CurveJsonReader {
   }
 
  private:
-  [[noreturn]] void fail(int line, const std::string& what) const {
-    std::string where = source_;
-    if (line > 0) where.append(":").append(std::to_string(line));
-    throw InputError(where.append(": ").append(what));
-  }
+  [[noreturn]] void fail(int line, const std::string& what) const { fail_at(source_, line, what); }
 
   FeatureCurveSpec read_curve(const Json& entry, const std::string& path) const {
     FeatureCurveSpec curve;

@@ -358,26 +358,18 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
   // triangle, then onto the nearest target point.
   std::optional<ClosestPointIndex> on_target;
   if (attempt.optimized && !curves.empty()) on_target.emplace(target);
-  for (const FeatureCurve& curve : curves) {
-    MappedCurve mapped;
-    mapped.name = curve.name;
-    mapped.closed = curve.closed;
-    for (const SurfacePoint& point : curve.points) {
-      if (on_target) {
-        Eigen::Vector3d chord = Eigen::Vector3d::Zero();
-        for (int c = 0; c < 3; ++c) chord += point.bary[c] * image_positions[faces[point.face][c]];
-        const ClosestPoint nearest = on_target->closest(chord);
-        mapped.points.push_back(nearest.location);
-        mapped.positions.push_back(nearest.point);
-        continue;
-      }
-      const MappedPoint image = cross.map_input_point(warp(point));
-      mapped.points.push_back(image.on_input);
-      mapped.positions.push_back(image.position);
-      result.max_clamp_distance = std::max(result.max_clamp_distance, image.clamp_distance);
+  const CurvePointMap image_of = [&](const SurfacePoint& point) {
+    if (on_target) {
+      Eigen::Vector3d chord = Eigen::Vector3d::Zero();
+      for (int c = 0; c < 3; ++c) chord += point.bary[c] * image_positions[faces[point.face][c]];
+      const ClosestPoint nearest = on_target->closest(chord);
+      return nearest.location;
     }
-    result.curves.push_back(std::move(mapped));
-  }
+    const MappedPoint image = cross.map_input_point(warp(point));
+    result.max_clamp_distance = std::max(result.max_clamp_distance, image.clamp_distance);
+    return image.on_input;
+  };
+  for (const FeatureCurve& curve : curves) result.curves.push_back(trace_curve(curve, source, target, image_of));
   result.seconds.compose += watch.lap();
 
   stage("metrics");

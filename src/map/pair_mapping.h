@@ -14,6 +14,7 @@
 #include "layout/consistent_layout.h"
 #include "map/corner_report.h"
 #include "map/cross_map.h"
+#include "map/curve_tracing.h"
 #include "map/fold_report.h"
 #include "map/map_optimization.h"
 #include "map/extremity_anchors.h"
@@ -115,14 +116,6 @@ struct ReleasedAnchor {
   double miss_distance = 0.0;
 };
 
-/// One template curve carried onto the target.
-struct MappedCurve {
-  std::string name;
-  std::vector<SurfacePoint> points;        ///< on the target input mesh (face + barycentrics, fv order)
-  std::vector<Eigen::Vector3d> positions;  ///< the same points in 3-D
-  bool closed = false;
-};
-
 /// What untangling did to the remesh (map/remesh_untangling.h); zeros when it was off.
 struct UntangleSummary {
   int flipped_before = 0;  ///< flipped remesh faces of Gamma itself
@@ -168,7 +161,9 @@ struct PairMapping {
   /// Per placed anchor (anchors[0] order): how far the map lands from the target's landmark
   /// (target units; 0 unless PairSettings::anchor_slack lets anchors move).
   std::vector<double> anchor_miss;
-  std::vector<MappedCurve> curves;   ///< the template's feature curves on the target, in input order
+  /// the template's feature curves on the target, in input order, traced on its surface
+  /// (map/curve_tracing.h)
+  std::vector<MappedCurve> curves;
   ConsistentLayoutResult layout;  ///< the optimized layout on both (refined) meshes, for exports and counts
   DomainOptimizationResult optimization;  ///< what the base-domain optimization did (swaps, merges, seconds)
   int layouts_built = 1;  ///< base domains built and mapped (PairSettings::retry_keeping_corners): 1 to 3

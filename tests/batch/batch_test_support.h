@@ -30,9 +30,10 @@ namespace fs = std::filesystem;
 
 inline fs::path sample_targets() { return data_path("sample_targets"); }
 
-// The template of the README's main command: the SMPL man with its landmarks and curves.
+// The template of the README's main command: the SMPL man with its landmarks, curves and measurements.
 inline TemplateInputs man_template() {
-  return {data_path("human_man.obj"), data_path("human.anchors.json"), data_path("human_man.curves.json"), {}};
+  return {data_path("human_man.obj"), data_path("human.anchors.json"), data_path("human_man.curves.json"), {},
+          data_path("human.measurements.json")};
 }
 
 inline std::string read_file(const fs::path& path) {

@@ -52,6 +52,21 @@ TEST(TargetJob, RetriangulatedManMapsNearTheIdentity) {
   // Anchors are fixed points of the map.
   for (const int a : man().record.anchor_vertices)
     EXPECT_LT((record.remesh_vertices.row(a) - man().record.vertices.row(a)).norm(), 1e-9) << a;
+
+  // The same body: the stature (head top an anchor, the floor the same vertices) is the
+  // template's exactly; the rest within the map's error (a mix-up of measurement order or of
+  // the surface measured breaks these by far).
+  const std::vector<std::string>& names = man().record.measurement_names;
+  ASSERT_EQ(record.measurements.size(), static_cast<Eigen::Index>(names.size()));
+  ASSERT_FALSE(names.empty());
+  for (std::size_t m = 0; m < names.size(); ++m) {
+    const double on_template = man().record.measurement_values[static_cast<Eigen::Index>(m)];
+    const double on_target = record.measurements[static_cast<Eigen::Index>(m)];
+    if (names[m] == "stature")
+      EXPECT_NEAR(on_target, on_template, 1e-9);
+    else
+      EXPECT_NEAR(on_target, on_template, 0.1 * on_template) << names[m];
+  }
 }
 
 // The template against itself with its two nipple landmarks swapped on the target, as a

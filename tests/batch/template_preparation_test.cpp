@@ -90,7 +90,7 @@ TEST(TemplatePreparation, InwardFacingTemplateKeepsFileCornerOrder) {
       {"name": "D", "vertex": 2241}, {"name": "E", "vertex": 5559}]})");
 
   const PreparedTemplate prepared =
-      prepare_template({dir / "inward.obj", dir / "inward.anchors.json", dir / "inward.curves.json", {}});
+      prepare_template({dir / "inward.obj", dir / "inward.anchors.json", dir / "inward.curves.json", {}, {}});
   ASSERT_EQ(prepared.loaded.file_order.reversed_count(), static_cast<int>(obj.faces.size()));
   const TemplateRecord& record = prepared.record;
   for (std::size_t f = 0; f < obj.faces.size(); ++f) {

@@ -260,6 +260,42 @@ TEST(ExportCommand, PlyFlagsTheVerticesOnFilledInSurface) {
   fs::remove_all(dir);
 }
 
+TEST(ExportCommand, MeasurementTableHasTheTemplateAndEveryTarget) {
+  const fs::path dir = test::fresh_temp_dir("cli_export_measurements");
+  TemplateRecord t = make_template();
+  const std::string archive = (dir / "run.h5").string();
+  write_archive(archive, t, provenance(), make_targets(t));
+  // No measurements in the archive: the error says how to get them.
+  CommandRun run = run_xparam("export " + archive + " --measurements --out " + (dir / "m.csv").string(), dir);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("run the batch with --measurements FILE"), std::string::npos) << run.err;
+
+  t.measurements_file = "body.json";
+  t.measurement_names = {"waist, natural", "height"};
+  t.measurement_units = {"m", "m"};
+  t.measurement_values = Eigen::Vector2d(0.75, 1.75);
+  std::vector<TargetRecord> targets = make_targets(t);
+  for (TargetRecord& target : targets)
+    if (target.ok) target.measurements = Eigen::Vector2d(0.25 * static_cast<double>(target.name.size()), std::nan(""));
+  fs::remove(archive);
+  write_archive(archive, t, provenance(), targets);
+  run = run_xparam("export " + archive + " --measurements --out " + (dir / "m.csv").string(), dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // Rows in archive order; the name with a comma quoted; NaN and failed targets as empty cells.
+  EXPECT_EQ(file_bytes(dir / "m.csv"),
+            "name,status,\"waist, natural (m)\",height (m)\n"
+            "template.obj,template,0.75,1.75\n"
+            "alice,ok,1.25,\n"
+            "bob,ok,0.75,\n"
+            "carl,failed,,\n"
+            "dora,suspect,1,\n");
+  run = run_xparam("inspect " + archive + " --target bob", dir);
+  EXPECT_NE(run.out.find("measurements: waist, natural 0.75 m, height - m"), std::string::npos) << run.out;
+  run = run_xparam("export " + archive + " --measurements --target bob --out " + (dir / "m.csv").string(), dir);
+  EXPECT_EQ(run.exit_code, 1);
+  fs::remove_all(dir);
+}
+
 TEST(ExportCommand, FailedOrUnknownTargetsAndFormatsAreErrors) {
   const fs::path dir = test::fresh_temp_dir("cli_export_errors");
   const TemplateRecord t = make_template();

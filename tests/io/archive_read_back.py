@@ -48,7 +48,7 @@ def check_layout(path):
     """Opens the archive, reads every dataset, checks shapes and invariants; returns the file."""
     f = h5py.File(path, "r")
     require(attr_text(f, "format") == "xparam-archive", "format attribute")
-    require(int(f.attrs["schema_version"]) == 3, "schema_version")
+    require(int(f.attrs["schema_version"]) == 4, "schema_version")
     for name in ("xparam_version", "git_revision", "options_json"):
         attr_text(f, name)
     json.loads(attr_text(f, "options_json"))
@@ -174,8 +174,14 @@ def check_values(f, expected):
         rows = slice(offsets[c], offsets[c + 1])
         require(list(f["template/curves/face"][rows]) == curve["face"], "template curve faces " + curve["name"])
         require(close(f["template/curves/bary"][rows], curve["bary"]), "template curve bary " + curve["name"])
+    require(strings(f["template/measurement_names"]) == et["measurement_names"], "measurement names")
+    require(strings(f["template/measurement_units"]) == et["measurement_units"], "measurement units")
+    require(close(f["template/measurement_values"][()], et["measurement_values"]), "template measurements")
 
     t = f["targets"]
+    if et["measurement_names"]:
+        names_attribute = [s.decode() if isinstance(s, bytes) else s for s in t["measurements"].attrs["names"]]
+        require(names_attribute == et["measurement_names"], "/targets/measurements names attribute")
     require(strings(t["name"]) == [e["name"] for e in expected["targets"]], "target names and order")
     status = t["status"][()]
     metrics = t["metrics"][()]
@@ -201,6 +207,8 @@ def check_values(f, expected):
         require(close(t["face_l2_stretch"][i], e["face_l2_stretch"]), where + "face_l2_stretch")
         require(close(t["face_angle_distortion"][i], e["face_angle_distortion"]), where + "face_angle_distortion")
         require(close(t["anchor_miss"][i], nan_of(e["anchor_miss"])), where + "anchor_miss")
+        if "measurements" in e and e["measurements"]:
+            require(close(t["measurements"][i], nan_of(e["measurements"])), where + "measurements")
         for c, curve in enumerate(e["curves"]):
             rows = slice(curve_offsets[i, c], curve_offsets[i, c + 1])
             require(list(t["curves/face"][rows]) == curve["face"], where + f"curve {c} faces")

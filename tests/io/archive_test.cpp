@@ -57,6 +57,7 @@ TemplateRecord make_template(int n_vertices) {
   for (int c = 0; c < 2; ++c) {
     TemplateCurve curve;
     curve.name = c == 0 ? "lip" : "brow";
+    curve.closed = c == 0;
     const int points = 3 + 2 * c;
     curve.bary.resize(points, 3);
     for (int p = 0; p < points; ++p) {
@@ -65,6 +66,11 @@ TemplateRecord make_template(int n_vertices) {
     }
     t.curves.push_back(curve);
   }
+  t.measurements_file = "template/head.measurements.json";
+  t.measurements_sha256 = sha256_hex("measurement bytes");
+  t.measurement_names = {"head_girth", "face_height"};
+  t.measurement_units = {"m", "m"};
+  t.measurement_values = Eigen::Vector2d(0.56, 0.21);
   return t;
 }
 
@@ -111,6 +117,8 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
     }
     r.curves.push_back(curve);
   }
+  // Target k: the first measurement grows with k, the second has no value on odd targets.
+  r.measurements = Eigen::Vector2d(0.5 + 0.01 * k, k % 2 ? kNaN : 0.2);
   r.metrics.e_l2 = 1.0 + k / 10.0;
   r.metrics.e_ang = 2.0 + k;
   r.metrics.stretch_max_sv = 3.0 + k;
@@ -217,6 +225,9 @@ nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
                    {"anchor_vertices", t.anchor_vertices}};
   for (const TemplateCurve& c : t.curves)
     e["template"]["curves"].push_back({{"name", c.name}, {"face", c.face}, {"bary", matrix_json(c.bary)}});
+  e["template"]["measurement_names"] = t.measurement_names;
+  e["template"]["measurement_units"] = t.measurement_units;
+  e["template"]["measurement_values"] = vector_of(t.measurement_values);
   e["stages"] = std::vector<std::string>(kTimingStages.begin(), kTimingStages.end());
   for (const TargetRecord& r : sorted_by_name(std::move(targets))) {
     nlohmann::json j = {{"name", r.name},
@@ -255,6 +266,7 @@ nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
       j["face_l2_stretch"] = vector_of(r.face_l2_stretch);
       j["face_angle_distortion"] = vector_of(r.face_angle_distortion);
       j["anchor_miss"] = vector_of(r.anchor_miss);
+      j["measurements"] = vector_of(r.measurements);
       for (const TransferredCurve& c : r.curves)
         j["curves"].push_back({{"face", c.face}, {"bary", matrix_json(c.bary)}, {"xyz", matrix_json(c.xyz)}});
     }

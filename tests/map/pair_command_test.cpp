@@ -111,7 +111,7 @@ TEST(PairCommand, MetricsReportTheMapTheUntanglingAndTheStages) {
   EXPECT_TRUE(fs::exists(default_run() / "stretch.ply"));
 }
 
-TEST(PairCommand, CurvesAreCarriedOverAsSurfacePointsAndPolylines) {
+TEST(PairCommand, CurvesAreTracedOnTheTargetAsSurfacePointsAndPolylines) {
   const nlohmann::json curves = read_json(default_run() / "curves.json")["curves"];
   std::ifstream in(test::data_path("human_man.curves.json"));
   const nlohmann::json given = nlohmann::json::parse(in)["curves"];
@@ -119,7 +119,9 @@ TEST(PairCommand, CurvesAreCarriedOverAsSurfacePointsAndPolylines) {
   ASSERT_EQ(curves.size(), given.size());
   for (std::size_t c = 0; c < curves.size(); ++c) {
     EXPECT_EQ(curves[c]["name"], given[c]["name"]);
-    ASSERT_EQ(curves[c]["points"].size(), given[c]["points"].size());
+    // Traced across the target's faces: a point wherever the curve crosses an edge, so more
+    // points than the template curve's own.
+    ASSERT_GT(curves[c]["points"].size(), given[c]["points"].size());
     // Every point is a target surface point, and its position is that point.
     for (const nlohmann::json& point : curves[c]["points"]) {
       const std::array<int, 3>& face = target.faces.at(point["face"].get<std::size_t>());

@@ -47,6 +47,7 @@ inline void expect_same_results(const TargetRecord& a, const TargetRecord& b) {
   EXPECT_TRUE(same_bits(a.face_l2_stretch, b.face_l2_stretch));
   EXPECT_TRUE(same_bits(a.face_angle_distortion, b.face_angle_distortion));
   EXPECT_TRUE(same_bits(a.anchor_miss, b.anchor_miss));
+  EXPECT_TRUE(same_bits(a.measurements, b.measurements));
   ASSERT_EQ(a.curves.size(), b.curves.size());
   for (std::size_t c = 0; c < a.curves.size(); ++c) {
     EXPECT_EQ(a.curves[c].face, b.curves[c].face);

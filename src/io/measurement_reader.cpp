@@ -1,0 +1,199 @@
+#include "io/measurement_reader.h"
+
+#include "core/errors.h"
+#include "io/anchor_reader.h"
+
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace xparam {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+class MeasurementJsonReader {
+ public:
+  MeasurementJsonReader(const LocatedJson& document, const std::string& source, const MeasurementTemplate& on)
+      : doc_(document), source_(source), on_(on) {}
+
+  MeasurementSet read() {
+    const Json& root = doc_.value;
+    if (!root.is_object()) fail(doc_.line(""), "expected a JSON object with \"unit\" and \"measurements\"");
+    only_members(root, {"$schema", "description", "unit", "landmarks", "measurements"}, doc_.line(""), "");
+    for (const char* text : {"$schema", "description"})
+      if (root.contains(text) && !root[text].is_string()) fail(line_of(text), std::string("\"") + text + "\" must be a string");
+    if (!root.contains("unit") || !root["unit"].is_string() || root["unit"].get<std::string>().empty())
+      fail(doc_.line(""), "expected \"unit\": the length unit of the template's coordinates, e.g. \"m\"");
+    MeasurementSet set{source_, root["unit"].get<std::string>(), {}};
+    if (root.contains("landmarks")) read_landmarks(root["landmarks"]);
+    if (!root.contains("measurements") || !root["measurements"].is_array() || root["measurements"].empty())
+      fail(doc_.line(""), "expected a non-empty \"measurements\" array");
+    std::set<std::string> names;
+    const Json& list = root["measurements"];
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      MeasurementDefinition m = read_measurement(list[i], "/measurements/" + std::to_string(i));
+      if (!names.insert(m.name).second)
+        fail(doc_.line("/measurements/" + std::to_string(i)), "measurement \"" + m.name + "\" is defined twice");
+      set.measurements.push_back(std::move(m));
+    }
+    return set;
+  }
+
+ private:
+  [[noreturn]] void fail(int line, const std::string& what) const { fail_at(source_, line, what); }
+
+  int line_of(const std::string& member) const { return doc_.line("/" + json_pointer_token(member)); }
+
+  void only_members(const Json& object, std::initializer_list<const char*> allowed, int line,
+                    const std::string& what) const {
+    for (const auto& [member, value] : object.items()) {
+      if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return member == a; })) {
+        std::string expected;
+        for (const char* a : allowed) expected.append(expected.empty() ? "\"" : ", \"").append(a).append("\"");
+        fail(line, what + "unknown member \"" + member + "\" (expected " + expected + ")");
+      }
+    }
+  }
+
+  void read_landmarks(const Json& landmarks) {
+    const int line = line_of("landmarks");
+    if (!landmarks.is_object()) fail(line, "\"landmarks\" must be an object of name: {\"vertex\": i}");
+    for (const auto& [name, value] : landmarks.items()) {
+      const int at = doc_.line("/landmarks/" + json_pointer_token(name));
+      if (!value.is_object() || value.size() != 1 || !value.contains("vertex"))
+        fail(at, "landmark \"" + name + "\": expected {\"vertex\": i}, got " + value.dump());
+      landmarks_[name] = vertex(value["vertex"], at, "landmark \"" + name + "\": ");
+    }
+  }
+
+  MeasurementDefinition read_measurement(const Json& entry, const std::string& path) const {
+    const int line = doc_.line(path);
+    if (!entry.is_object() || !entry.contains("name") || !entry["name"].is_string() ||
+        entry["name"].get<std::string>().empty())
+      fail(line, "a measurement must be an object with a non-empty string \"name\"");
+    MeasurementDefinition m;
+    m.name = entry["name"].get<std::string>();
+    const std::string what = "measurement \"" + m.name + "\": ";
+    if (!entry.contains("type") || !entry["type"].is_string())
+      fail(line, what + "expected \"type\": \"plane_girth\", \"straight\" or \"height\"");
+    const std::string type = entry["type"].get<std::string>();
+    if (type == "plane_girth") {
+      only_members(entry, {"name", "type", "description", "through", "normal", "normal_from_to", "hull", "near"}, line,
+                   what);
+      m.kind = MeasurementKind::PlaneGirth;
+      read_plane(entry, line, what, m);
+    } else if (type == "straight") {
+      only_members(entry, {"name", "type", "description", "points", "closed"}, line, what);
+      m.kind = MeasurementKind::Straight;
+      m.points = points(entry, "points", line, what);
+      if (m.points.size() < 2) fail(line, what + "\"points\" needs at least 2 points");
+      if (entry.contains("closed")) m.closed = boolean(entry["closed"], line, what + "\"closed\"");
+      if (m.closed && m.points.size() < 3) fail(line, what + "a closed polyline needs at least 3 points");
+    } else if (type == "height") {
+      only_members(entry, {"name", "type", "description", "point", "up"}, line, what);
+      m.kind = MeasurementKind::Height;
+      if (!entry.contains("point")) fail(line, what + "expected \"point\": the point whose height is measured");
+      m.points = {point(entry["point"], line, what + "\"point\": ")};
+      if (!entry.contains("up")) fail(line, what + "expected \"up\": [x, y, z], the direction away from the floor");
+      m.up = direction(entry["up"], line, what + "\"up\": ");
+    } else {
+      fail(line, what + "unknown type \"" + type + "\" (expected \"plane_girth\", \"straight\" or \"height\")");
+    }
+    return m;
+  }
+
+  void read_plane(const Json& entry, int line, const std::string& what, MeasurementDefinition& m) const {
+    PlaneRule& plane = m.plane;
+    plane.through = points(entry, "through", line, what);
+    const bool fixed = entry.contains("normal");
+    const bool from_to = entry.contains("normal_from_to");
+    if (plane.through.size() == 3) {
+      if (fixed || from_to) fail(line, what + "a plane through 3 points takes no \"normal\" or \"normal_from_to\"");
+    } else if (plane.through.size() == 1) {
+      if (fixed == from_to)
+        fail(line, what + "a plane through 1 point needs exactly one of \"normal\": [x, y, z] and "
+                          "\"normal_from_to\": [point, point]");
+      if (fixed) {
+        plane.normal = direction(entry["normal"], line, what + "\"normal\": ");
+      } else {
+        const std::vector<int> ends = points(entry, "normal_from_to", line, what);
+        if (ends.size() != 2 || ends[0] == ends[1])
+          fail(line, what + "\"normal_from_to\" must name two different points");
+        plane.normal_from = ends[0];
+        plane.normal_to = ends[1];
+      }
+    } else {
+      fail(line, what + "\"through\" must hold 1 point (with a normal) or 3 points");
+    }
+    if (entry.contains("hull")) m.convex_hull = boolean(entry["hull"], line, what + "\"hull\"");
+    m.near = entry.contains("near") ? point(entry["near"], line, what + "\"near\": ") : plane.through.front();
+  }
+
+  std::vector<int> points(const Json& entry, const char* member, int line, const std::string& what) const {
+    if (!entry.contains(member) || !entry[member].is_array())
+      fail(line, what + "expected \"" + member + "\": an array of points (names or {\"vertex\": i})");
+    std::vector<int> out;
+    for (const Json& p : entry[member]) out.push_back(point(p, line, what + "\"" + member + "\": "));
+    return out;
+  }
+
+  int point(const Json& p, int line, const std::string& what) const {
+    if (p.is_string()) {
+      const std::string name = p.get<std::string>();
+      if (const auto it = landmarks_.find(name); it != landmarks_.end()) return it->second;
+      const auto anchor = std::find(on_.anchor_names.begin(), on_.anchor_names.end(), name);
+      if (anchor != on_.anchor_names.end())
+        return on_.anchor_vertices[static_cast<std::size_t>(anchor - on_.anchor_names.begin())];
+      fail(line, what + "\"" + name +
+                     "\" is neither a landmark of this file nor an anchor of the template: add it to "
+                     "\"landmarks\" as {\"vertex\": i}");
+    }
+    if (p.is_object() && p.size() == 1 && p.contains("vertex")) return vertex(p["vertex"], line, what);
+    fail(line, what + "expected a point name or {\"vertex\": i}, got " + p.dump());
+  }
+
+  int vertex(const Json& value, int line, const std::string& what) const {
+    if (value.is_number()) {
+      const double number = value.get<double>();
+      if (std::floor(number) == number && number >= 0 && number < on_.n_vertices) return static_cast<int>(number);
+    }
+    fail(line, what + "expected a template vertex index in [0, " + std::to_string(on_.n_vertices) + "), got " +
+                   value.dump());
+  }
+
+  bool boolean(const Json& value, int line, const std::string& what) const {
+    if (!value.is_boolean()) fail(line, what + " must be true or false");
+    return value.get<bool>();
+  }
+
+  Eigen::Vector3d direction(const Json& value, int line, const std::string& what) const {
+    if (!value.is_array() || value.size() != 3 ||
+        !std::all_of(value.begin(), value.end(), [](const Json& x) { return x.is_number(); }))
+      fail(line, what + "expected 3 numbers, got " + value.dump());
+    const Eigen::Vector3d v(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
+    if (!v.allFinite() || v.norm() == 0.0) fail(line, what + "the direction must be finite and not zero");
+    return v.normalized();
+  }
+
+  const LocatedJson& doc_;
+  const std::string& source_;
+  const MeasurementTemplate& on_;
+  std::map<std::string, int> landmarks_;
+};
+
+}  // namespace
+
+MeasurementSet parse_measurements_json(const std::string& text, const std::string& source,
+                                       const MeasurementTemplate& on) {
+  const LocatedJson document = parse_located_json(text, source);
+  return MeasurementJsonReader(document, source, on).read();
+}
+
+MeasurementSet read_measurements(const std::filesystem::path& path, const MeasurementTemplate& on) {
+  return parse_measurements_json(read_text_file(path), path.string(), on);
+}
+
+}  // namespace xparam

@@ -1,0 +1,107 @@
+#include "io/measurement_reader.h"
+
+#include "core/errors.h"
+#include "io/anchor_reader.h"
+#include "support/expect_error.h"
+#include "support/test_data.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace xparam {
+namespace {
+
+// Two anchors on a template of 100 vertices.
+const MeasurementTemplate kTemplate{{"HEAD_TOP", "CROTCH"}, {12, 40}, 100};
+
+std::string parse_error(const std::string& text) {
+  return test::error_message_of([&] { parse_measurements_json(text, "m.json", kTemplate); });
+}
+
+TEST(MeasurementReader, NamesResolveToLandmarksThenAnchorsThenVertices) {
+  const MeasurementSet set = parse_measurements_json(R"({"unit": "m",
+    "landmarks": {"Neck": {"vertex": 7}, "CROTCH": {"vertex": 9}},
+    "measurements": [
+      {"name": "a", "type": "straight", "points": ["Neck", "HEAD_TOP", {"vertex": 3}], "closed": true},
+      {"name": "b", "type": "plane_girth", "through": ["CROTCH"], "normal": [0, 2, 0], "hull": true},
+      {"name": "c", "type": "plane_girth", "through": ["Neck"], "normal_from_to": ["HEAD_TOP", {"vertex": 5}], "near": {"vertex": 6}},
+      {"name": "d", "type": "plane_girth", "through": [{"vertex": 1}, {"vertex": 2}, "Neck"]},
+      {"name": "e", "type": "height", "point": "HEAD_TOP", "up": [0, 0, 3]}]})",
+                                                     "m.json", kTemplate);
+  EXPECT_EQ(set.unit, "m");
+  ASSERT_EQ(set.measurements.size(), 5U);
+  const MeasurementDefinition& a = set.measurements[0];
+  EXPECT_EQ(a.kind, MeasurementKind::Straight);
+  EXPECT_EQ(a.points, (std::vector<int>{7, 12, 3}));
+  EXPECT_TRUE(a.closed);
+  const MeasurementDefinition& b = set.measurements[1];
+  EXPECT_EQ(b.kind, MeasurementKind::PlaneGirth);
+  EXPECT_EQ(b.plane.through, std::vector<int>{9});  // the file's landmark hides the anchor
+  EXPECT_EQ(b.plane.normal, Eigen::Vector3d(0, 1, 0));  // normalized
+  EXPECT_TRUE(b.convex_hull);
+  EXPECT_EQ(b.near, 9);  // defaults to the plane's point
+  const MeasurementDefinition& c = set.measurements[2];
+  EXPECT_EQ(c.plane.normal_from, 12);
+  EXPECT_EQ(c.plane.normal_to, 5);
+  EXPECT_EQ(c.near, 6);
+  EXPECT_FALSE(c.convex_hull);
+  EXPECT_EQ(set.measurements[3].plane.through, (std::vector<int>{1, 2, 7}));
+  const MeasurementDefinition& e = set.measurements[4];
+  EXPECT_EQ(e.kind, MeasurementKind::Height);
+  EXPECT_EQ(e.points, std::vector<int>{12});
+  EXPECT_EQ(e.up, Eigen::Vector3d(0, 0, 1));
+}
+
+TEST(MeasurementReader, ErrorsNameFileLineMeasurementAndFix) {
+  EXPECT_MESSAGE_HAS(parse_error("[]"), "m.json:1: expected a JSON object");
+  EXPECT_MESSAGE_HAS(parse_error(R"({"measurements": []})"), "m.json:1: expected \"unit\"");
+  EXPECT_MESSAGE_HAS(parse_error(R"({"unit": "m", "measurements": []})"), "non-empty \"measurements\" array");
+  EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"tape\"}]}"),
+                     "m.json:2: measurement \"x\": unknown type \"tape\"");
+  EXPECT_MESSAGE_HAS(
+      parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"straight\", \"points\": [\"Nose\", 1]}]}"),
+      "m.json:2: measurement \"x\": \"points\": \"Nose\" is neither a landmark of this file nor an anchor of the "
+      "template: add it to \"landmarks\"");
+  EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"straight\", "
+                                 "\"points\": [{\"vertex\": 100}, 1]}]}"),
+                     "expected a template vertex index in [0, 100), got 100");
+  EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"plane_girth\", "
+                                 "\"through\": [1, 2]}]}"),
+                     "m.json:2: measurement \"x\": \"through\": expected a point name or {\"vertex\": i}, got 1");
+  EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"plane_girth\", "
+                                 "\"through\": [{\"vertex\": 1}, {\"vertex\": 2}]}]}"),
+                     "\"through\" must hold 1 point (with a normal) or 3 points");
+  EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"plane_girth\", "
+                                 "\"through\": [\"CROTCH\"]}]}"),
+                     "needs exactly one of \"normal\": [x, y, z] and \"normal_from_to\"");
+  EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"plane_girth\", "
+                                 "\"through\": [\"CROTCH\"], \"normal\": [0, 0, 0]}]}"),
+                     "the direction must be finite and not zero");
+  EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"height\", "
+                                 "\"point\": \"CROTCH\", \"up\": [0, 1, 0], \"colour\": 1}]}"),
+                     "m.json:2: measurement \"x\": unknown member \"colour\"");
+  EXPECT_MESSAGE_HAS(parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"x\", \"type\": \"straight\", "
+                                 "\"points\": [\"CROTCH\", \"HEAD_TOP\"]},\n{\"name\": \"x\", \"type\": \"straight\", "
+                                 "\"points\": [\"CROTCH\", \"HEAD_TOP\"]}]}"),
+                     "m.json:3: measurement \"x\" is defined twice");
+}
+
+TEST(MeasurementReader, TheBundledBodySetReadsOnTheSmplTemplate) {
+  const AnchorSet anchors = read_anchors(test::data_path("human.anchors.json"));
+  MeasurementTemplate smpl{{}, {}, 6890};
+  for (const AnchorSpec& anchor : anchors.anchors) {
+    smpl.anchor_names.push_back(anchor.name);
+    smpl.anchor_vertices.push_back(std::get<AnchorVertex>(anchor.location).index);
+  }
+  const MeasurementSet set = read_measurements(test::data_path("human.measurements.json"), smpl);
+  EXPECT_EQ(set.unit, "m");
+  std::vector<std::string> names;
+  for (const MeasurementDefinition& m : set.measurements) names.push_back(m.name);
+  for (const char* required : {"stature", "neck_girth", "chest_girth", "waist_girth", "hip_girth", "thigh_girth",
+                               "calf_girth", "upper_arm_girth", "arm_length", "inside_leg_height", "shoulder_width"})
+    EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
+}
+
+}  // namespace
+}  // namespace xparam

@@ -1,0 +1,147 @@
+#include "measure/body_measurements.h"
+
+#include "measure/prism_meshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace xparam {
+namespace {
+
+constexpr int kSides = 512;
+
+MeasurementDefinition girth_through(int vertex, const Eigen::Vector3d& normal, bool hull = false) {
+  MeasurementDefinition m;
+  m.name = "girth";
+  m.kind = MeasurementKind::PlaneGirth;
+  m.plane.through = {vertex};
+  m.plane.normal = normal.normalized();
+  m.near = vertex;
+  m.convex_hull = hull;
+  return m;
+}
+
+TEST(BodyMeasurements, CylinderGirthIsTwoPiR) {
+  const double r = 0.15;
+  // Rings at 0, 0.5 and 1.2: the plane runs through the middle ring's vertices.
+  const Mesh cylinder = test::prism(test::regular_polygon(kSides, r), {0.0, 0.5, 1.2});
+  const double girth = measure_one(girth_through(kSides + 7, {0, 0, 1}), cylinder, test::vertex_rows(cylinder));
+  // The inscribed 512-gon's perimeter, within its known shortfall of the circle.
+  EXPECT_NEAR(girth, 2 * kSides * r * std::sin(M_PI / kSides), 1e-12);
+  EXPECT_NEAR(girth, 2 * M_PI * r, 2 * M_PI * r * (M_PI * M_PI / (6.0 * kSides * kSides)) * 1.01);
+}
+
+TEST(BodyMeasurements, NormalFromTwoPointsTiltsThePlane) {
+  // Through the middle ring, the normal from a bottom vertex to a top vertex across the axis:
+  // the section of a cylinder by a plane tilted by theta is an ellipse with axes r and r/cos(theta).
+  const double r = 0.1;
+  const Mesh cylinder = test::prism(test::regular_polygon(kSides, r), {0.0, 0.5, 1.0});
+  MeasurementDefinition m = girth_through(kSides, {0, 0, 1});
+  const int bottom_centre = 3 * kSides, top_across = 2 * kSides;  // (0,0,0) and (r,0,1)
+  m.plane.normal_from = bottom_centre;
+  m.plane.normal_to = top_across;
+  const double theta = std::atan(r / 1.0);
+  const double a = r / std::cos(theta), b = r;
+  // Ramanujan's second approximation; its error is far below the polygon's here.
+  const double h = (a - b) * (a - b) / ((a + b) * (a + b));
+  const double ellipse = M_PI * (a + b) * (1 + 3 * h / (10 + std::sqrt(4 - 3 * h)));
+  EXPECT_NEAR(measure_one(m, cylinder, test::vertex_rows(cylinder)), ellipse, ellipse * 1e-4);
+}
+
+TEST(BodyMeasurements, TheLoopNearestTheReferencePointIsMeasured) {
+  // Two cylinders side by side, radii 0.1 and 0.2, both cut by the plane z = 0.5.
+  Mesh both = test::prism(test::regular_polygon(kSides, 0.1), {0.0, 0.5, 1.0});
+  const Mesh wide = test::prism(test::regular_polygon(kSides, 0.2), {0.0, 0.5, 1.0}, {1.0, 0.0, 0.0});
+  const int offset = static_cast<int>(both.n_vertices());
+  std::vector<VertexHandle> added;
+  for (const VertexHandle v : wide.vertices()) added.push_back(both.add_vertex(wide.point(v)));
+  for (const FaceHandle f : wide.faces()) {
+    std::vector<VertexHandle> corners;
+    for (const VertexHandle v : wide.fv_range(f)) corners.push_back(added[static_cast<std::size_t>(v.idx())]);
+    both.add_face(corners);
+  }
+  const Eigen::MatrixX3d rows = test::vertex_rows(both);
+  MeasurementDefinition m = girth_through(kSides, {0, 0, 1});
+  EXPECT_NEAR(measure_one(m, both, rows), 2 * M_PI * 0.1, 1e-4);
+  m.near = offset + kSides + 3;
+  EXPECT_NEAR(measure_one(m, both, rows), 2 * M_PI * 0.2, 1e-4);
+}
+
+TEST(BodyMeasurements, HullGirthBridgesTheHollows) {
+  // A cross-shaped section (a plus sign of arm width w and span s): the tape goes round the
+  // octagon of its eight outer corners.
+  const double w = 0.2, s = 1.0;
+  const double h = w / 2, e = s / 2;
+  const std::vector<Eigen::Vector2d> plus = {{e, -h}, {e, h},   {h, h},   {h, e},   {-h, e},  {-h, h},
+                                             {-e, h}, {-e, -h}, {-h, -h}, {-h, -e}, {h, -e},  {h, -h}};
+  const Mesh mesh = test::prism(plus, {0.0, 0.5, 1.0});
+  const Eigen::MatrixX3d rows = test::vertex_rows(mesh);
+  const int middle = static_cast<int>(plus.size());
+  EXPECT_NEAR(measure_one(girth_through(middle, {0, 0, 1}), mesh, rows), 8 * (e - h) + 4 * w, 1e-12);
+  const double octagon = 4 * w + 4 * std::sqrt(2.0) * (e - h);
+  EXPECT_NEAR(measure_one(girth_through(middle, {0, 0, 1}, true), mesh, rows), octagon, 1e-12);
+}
+
+TEST(BodyMeasurements, StraightDistanceIsTheFormula) {
+  const Mesh cylinder = test::prism(test::regular_polygon(8, 1.0), {0.0, 2.0});
+  const Eigen::MatrixX3d rows = test::vertex_rows(cylinder);
+  MeasurementDefinition m;
+  m.kind = MeasurementKind::Straight;
+  m.points = {0, 4, 12};  // (1,0,0), (-1,0,0), (-1,0,2)
+  EXPECT_NEAR(measure_one(m, cylinder, rows), 2.0 + 2.0, 1e-12);
+  m.closed = true;
+  EXPECT_NEAR(measure_one(m, cylinder, rows), 4.0 + std::sqrt(8.0), 1e-12);
+}
+
+TEST(BodyMeasurements, HeightIsAboveTheLowestPoint) {
+  const Mesh cylinder = test::prism(test::regular_polygon(8, 1.0), {-0.25, 1.5}, {0, 0, 3.0});
+  MeasurementDefinition m;
+  m.kind = MeasurementKind::Height;
+  m.points = {9};  // a top-ring vertex
+  m.up = Eigen::Vector3d(0, 0, 1);
+  EXPECT_NEAR(measure_one(m, cylinder, test::vertex_rows(cylinder)), 1.75, 1e-12);
+}
+
+TEST(BodyMeasurements, NoPlaneOrNoSectionGivesNaN) {
+  const Mesh cylinder = test::prism(test::regular_polygon(8, 1.0), {0.0, 2.0});
+  const Eigen::MatrixX3d rows = test::vertex_rows(cylinder);
+  MeasurementDefinition collinear;
+  collinear.kind = MeasurementKind::PlaneGirth;
+  collinear.plane.through = {0, 8, 16};  // (1,0,0), (1,0,2) and the bottom centre (0,0,0): the plane y = 0
+  collinear.near = 0;
+  EXPECT_TRUE(std::isfinite(measure_one(collinear, cylinder, rows)));
+  Eigen::MatrixX3d squashed = rows;
+  squashed.row(16) = Eigen::RowVector3d(1, 0, 1);  // now on the line through the other two
+  EXPECT_TRUE(std::isnan(measure_one(collinear, cylinder, squashed)));
+  MeasurementDefinition beside = girth_through(0, {0, 0, 1});
+  Eigen::MatrixX3d lifted = rows;
+  lifted.row(0) = Eigen::RowVector3d(1, 0, 5);  // the plane z = 5 misses the cylinder
+  EXPECT_TRUE(std::isnan(measure_one(beside, cylinder, lifted)));
+}
+
+TEST(BodyMeasurements, ScalingTheBodyScalesEveryMeasurement) {
+  const Mesh body = test::prism(test::regular_polygon(64, 0.2), {0.0, 0.4, 1.0});
+  Mesh scaled = body;
+  const double s = 1.7;
+  for (const VertexHandle v : scaled.vertices()) scaled.set_point(v, to_point(s * position(body, v)));
+  MeasurementSet set;
+  MeasurementDefinition height;
+  height.kind = MeasurementKind::Height;
+  height.points = {64 + 5};
+  height.up = Eigen::Vector3d(0, 0, 1);
+  MeasurementDefinition straight;
+  straight.kind = MeasurementKind::Straight;
+  straight.points = {0, 150};
+  set.measurements = {girth_through(64, {0, 0, 1}), girth_through(64, {0, 0, 1}, true), height, straight};
+  const std::vector<double> before = measure_surface(set, body, test::vertex_rows(body));
+  const std::vector<double> after = measure_surface(set, scaled, test::vertex_rows(scaled));
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    EXPECT_GT(before[i], 0.0);
+    EXPECT_NEAR(after[i], s * before[i], 1e-12) << i;
+  }
+}
+
+}  // namespace
+}  // namespace xparam
