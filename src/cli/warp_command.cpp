@@ -313,7 +313,7 @@ void add_warp_command(CLI::App& app) {
   warp->footer(
       "Exit status: 0 every chosen target warped, 2 some could not be (failed in the archive), 1 usage error (also: "
       "an output exists and --force is not given), 3 fatal (unreadable garment or archive, unwritable output).\n"
-      "Example: xparam warp --archive sample.h5 --garment tests/data/garment_shirt.obj --clearance 0.002 --out "
+      "Example: xparam warp --archive sample.h5 --garment tests/data/garment_torso.obj --clearance 0.002 --out "
       "warped/");
   warp->callback([options] {
     int status = 0;

@@ -99,7 +99,14 @@ nlohmann::ordered_json warp_target_json(const WarpedGarment& g, const std::strin
   target["obj"] = obj_file.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(obj_file);
   nlohmann::ordered_json figures;
   const std::vector<double> values = warp_figures(g);
-  for (std::size_t k = 0; k < values.size(); ++k) figures[warp_figure_names()[k]] = number(values[k]);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const std::string& name = warp_figure_names()[k];
+    // Vertex counts are written as integers (they are doubles only in the HDF5 table's columns).
+    const bool count = name == "placed_inside" || name == "inside" || name == "pushed" || name == "moved" ||
+                       name == "still_close";
+    figures[name] = count && std::isfinite(values[k]) ? nlohmann::ordered_json(static_cast<long long>(values[k]))
+                                                      : number(values[k]);
+  }
   target["figures"] = figures;
   return target;
 }
