@@ -21,8 +21,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -141,6 +143,10 @@ std::vector<WarpTarget> read_images(const ArchiveReader& reader, const TriangleS
       continue;
     }
     const TargetRecord record = reader.read_target(row);
+    if (record.remesh_vertices.rows() != static_cast<Eigen::Index>(body_template.vertices.size()))
+      throw ArchiveError(reader.path().string() + ": target " + summary.name + " has " +
+                         std::to_string(record.remesh_vertices.rows()) + " remesh vertices but the template " +
+                         std::to_string(body_template.vertices.size()) + "; the archive is damaged (xparam inspect --verify)");
     WarpTarget image{summary.name, body_template};
     image.body.source = reader.path().string() + ": target " + summary.name;
     for (Eigen::Index v = 0; v < record.remesh_vertices.rows(); ++v)
