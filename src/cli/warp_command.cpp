@@ -223,7 +223,7 @@ int run_warp(const WarpOptions& options) {
   if (options.clearance) settings.clearance = ClearanceSettings{*options.clearance};
   const BindSettings bind{options.frame == "rigid" ? OffsetFrame::rigid : OffsetFrame::gradient};
 
-  GarmentObj garment = read_garment_obj(options.garment);
+  const GarmentObj garment = read_garment_obj(options.garment);
   check_rest_garment(garment.mesh);
   const TriangleSoup body_template = template_soup(*reader);
   std::vector<WarpedGarment> unmapped;
