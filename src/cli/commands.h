@@ -19,6 +19,7 @@ void add_batch_command(CLI::App& app);  ///< `xparam batch --template T --target
 void add_inspect_command(CLI::App& app);  ///< `xparam inspect ARCHIVE [--json]` (inspect_command.cpp)
 void add_export_command(CLI::App& app);   ///< `xparam export ARCHIVE --target NAME --out FILE` (export_command.cpp)
 void add_merge_command(CLI::App& app);    ///< `xparam merge SHARD.h5... --out ARCHIVE.h5` (merge_command.cpp)
+void add_warp_command(CLI::App& app);    ///< `xparam warp --archive A.h5 --garment G.obj --out DIR|OUT.h5` (warp_command.cpp)
 void add_layout_command(CLI::App& app);  ///< `xparam layout --source S ... --out DIR [--check]` (layout_command.cpp)
 
 }  // namespace xparam::cli

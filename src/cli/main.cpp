@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   xparam::cli::add_inspect_command(app);
   xparam::cli::add_export_command(app);
   xparam::cli::add_merge_command(app);
+  xparam::cli::add_warp_command(app);
 
   try {
     app.parse(argc, argv);
