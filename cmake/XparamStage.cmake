@@ -22,9 +22,9 @@ endfunction()
 # `fast`), `name`_slow from its *_slow_test.cpp files (label `slow`: long on the bundled data, e.g.
 # a whole pair mapped twice to compare thread counts), and `name`_real_data from its
 # *_real_data_test.cpp files (label `real_data`: long cases on ../shared/data). A pass leaves
-# labels out with `ctest -LE`, or leaves the long executables unbuilt with XPARAM_LONG_TESTS=OFF:
+# labels out with `ctest -LE`, or leaves the long executables unbuilt with XPARAM_BUILD_LONG_TESTS=OFF:
 # the sanitizer pass builds and runs only `fast`.
-option(XPARAM_LONG_TESTS "Build the tests labelled slow and real_data" ON)
+option(XPARAM_BUILD_LONG_TESTS "Build the tests labelled slow and real_data" ON)
 function(xparam_test_folder name dir)
   cmake_parse_arguments(ARG "" "" "DEPENDS" ${ARGN})
   file(GLOB sources CONFIGURE_DEPENDS ${dir}/*_test.cpp)
@@ -37,7 +37,7 @@ function(xparam_test_folder name dir)
     xparam_test_executable(${name} fast ${sources} DEPENDS ${ARG_DEPENDS})
   endif()
   foreach(label slow real_data)
-    if(${label}_sources AND XPARAM_LONG_TESTS)
+    if(${label}_sources AND XPARAM_BUILD_LONG_TESTS)
       xparam_test_executable(${name}_${label} ${label} ${${label}_sources} DEPENDS ${ARG_DEPENDS})
     endif()
   endforeach()
