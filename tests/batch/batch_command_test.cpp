@@ -1,5 +1,6 @@
-// `xparam batch` as a program: exit codes, --summary, --dry-run, verdicts and an independent h5py
-// reader (--config, SIGKILL + --resume and the parallel and Slurm scripts: batch_command_slow_test).
+// `xparam batch` as a program: verdicts and --fail-on-suspect, usage and fatal errors' exit codes
+// (whole batches read back by h5py, --config, SIGKILL + --resume and the parallel and Slurm
+// scripts: batch_command_slow_test).
 #include "batch_test_support.h"
 
 #include <gtest/gtest.h>
@@ -13,63 +14,7 @@ using test::quoted;
 
 using test::batch;
 using test::kQuick;
-using test::python_or_skip;
 using test::template_options;
-
-TEST(BatchCommand, FailuresExitTwoAndAreReadBackByH5py) {
-  const path dir = test::fresh_temp_dir("command_failures");
-  test::copy_sample_targets(dir / "targets", {"woman", "woman_turned", "man_flipped", "man_bent"});
-  test::add_broken_targets(dir / "targets");
-
-  // --dry-run: every input checked, the plan printed, nothing written.
-  EXPECT_EQ(batch(dir, template_options() + " --targets " + quoted(dir / "targets") + " --out " +
-                           quoted(dir / "out.h5") + " --dry-run"),
-            2);
-  const std::string plan = test::read_file(dir / "stdout.txt");
-  EXPECT_NE(plan.find("8 of 8 targets"), std::string::npos) << plan;
-  EXPECT_NE(plan.find("check torus: FAILS"), std::string::npos) << plan;
-  EXPECT_NE(plan.find("check woman: ok"), std::string::npos) << plan;
-  EXPECT_NE(plan.find("4 of 8 targets to run pass"), std::string::npos) << plan;
-  EXPECT_FALSE(std::filesystem::exists(dir / "out.h5"));
-
-  ASSERT_EQ(batch(dir, template_options() + kQuick + " --targets " + quoted(dir / "targets") + " --out " +
-                           quoted(dir / "out.h5") + " -j 2 --summary " + quoted(dir / "summary.json")),
-            2)
-      << test::read_file(dir / "stderr.txt");
-  // Not a terminal: one plain line per target.
-  const std::string log = test::read_file(dir / "stderr.txt");
-  EXPECT_NE(log.find("] FAILED torus: "), std::string::npos) << log;
-  EXPECT_NE(log.find("] ok woman "), std::string::npos) << log;
-
-  const nlohmann::json summary = nlohmann::json::parse(test::read_file(dir / "summary.json"));
-  EXPECT_EQ(summary["failed"], 4);
-  EXPECT_EQ(summary["succeeded"], 4);
-  EXPECT_EQ(summary["threads"], 2);
-  EXPECT_EQ(summary["targets"].size(), 8u);
-  EXPECT_EQ(summary["targets"][0]["name"], "man_bent");
-  EXPECT_TRUE(summary["targets"][0]["metrics"]["gt_error"].is_number());
-  EXPECT_EQ(summary["targets"][3]["name"], "torus");
-  EXPECT_EQ(summary["targets"][3]["status"], "failed");
-  EXPECT_TRUE(summary["targets"][3]["metrics"]["E_L2"].is_null());
-
-  const nlohmann::json expected = {
-      {"targets",
-       {{"woman", {{"ok", true}}},
-        {"woman_turned", {{"ok", true}}},
-        {"man_flipped", {{"ok", true}}},
-        {"man_bent", {{"ok", true}}},
-        {"truncated", {{"ok", false}, {"error_contains", {"truncated.obj"}}}},
-        {"no_anchors", {{"ok", false}, {"error_contains", {"no anchors", "no_anchors.obj"}}}},
-        {"torus", {{"ok", false}, {"error_contains", {"genus mismatch", "torus.ply", "genus 1"}}}},
-        {"unknown_name", {{"ok", false}, {"error_contains", {"NOT_A_LANDMARK", "unknown_name.anchors.json"}}}}}}};
-  test::write_file(dir / "expected.json", expected.dump());
-  const std::string python = python_or_skip();
-  const path checker = path(XPARAM_SOURCE_DIR) / "tests" / "batch" / "batch_archive_check.py";
-  EXPECT_EQ(test::run_status(python + " " + quoted(checker) + " " + quoted(dir / "out.h5") + " " +
-                             quoted(dir / "expected.json")),
-            0);
-  EXPECT_EQ(test::run_status(python + " " + quoted(test::read_back_script()) + " --open " + quoted(dir / "out.h5")), 0);
-}
 
 // The woman's anchors with LEFT_NIPPLE and RIGHT_NIPPLE traded: a left/right mix-up in a
 // landmark file.
