@@ -3,6 +3,7 @@
 #include "cli/commands.h"
 
 #include "cli/text_format.h"
+#include "cli/unknown_target.h"
 #include "io/archive_export.h"
 #include "io/archive_reader.h"
 #include "io/measurement_table.h"
@@ -50,11 +51,7 @@ void check_request(const ExportOptions& options) {
   if (extension != ".obj" && extension != ".ply")
     usage_error("export", "--out " + options.out + ": the extension must be .obj or .ply");
   const ArchiveReader reader(options.archive);
-  if (reader.find(options.target)) return;
-  std::string names;
-  for (const ArchiveTargetSummary& t : reader.targets()) names += (names.empty() ? "" : ", ") + t.name;
-  usage_error("export", options.archive + ": no target \"" + options.target + "\"; it holds " +
-                            (names.empty() ? std::string("none") : names) + " (xparam inspect lists them)");
+  if (!reader.find(options.target)) refuse_unknown_target("export", reader, options.target, true);
 }
 
 }  // namespace

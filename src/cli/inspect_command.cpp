@@ -2,6 +2,7 @@
 #include "cli/commands.h"
 #include "cli/diagnosis_text.h"
 #include "cli/text_format.h"
+#include "cli/unknown_target.h"
 
 #include "batch/summary_json.h"
 
@@ -42,12 +43,7 @@ std::string status_of(const ArchiveTargetSummary& t) { return !t.ok ? "failed" :
 // `inspect --target NAME`: the target's row, its verdict's reasons and its diagnosis.
 void print_target(const ArchiveReader& reader, const std::string& name, bool json) {
   const std::optional<std::size_t> row = reader.find(name);
-  if (!row) {
-    std::string names;
-    for (const ArchiveTargetSummary& t : reader.targets()) names += (names.empty() ? "" : ", ") + t.name;
-    usage_error("inspect", reader.path().string() + ": no target \"" + name + "\"; it holds " +
-                     (names.empty() ? std::string("none") : names));
-  }
+  if (!row) refuse_unknown_target("inspect", reader, name, false);
   const ArchiveTargetSummary& t = reader.targets()[*row];
   const nlohmann::ordered_json diagnosis =
       t.diagnosis.empty() ? nlohmann::ordered_json::object() : nlohmann::ordered_json::parse(t.diagnosis, nullptr, false);

@@ -3,6 +3,7 @@
 #include "cli/command_line.h"
 #include "cli/commands.h"
 #include "cli/text_format.h"
+#include "cli/unknown_target.h"
 #include "cli/warp_report.h"
 
 #include "core/errors.h"
@@ -70,12 +71,7 @@ std::vector<std::size_t> chosen_rows(const ArchiveReader& reader, const WarpOpti
   }
   for (const std::string& name : options.targets) {
     const std::optional<std::size_t> row = reader.find(name);
-    if (!row) {
-      std::string names;
-      for (const ArchiveTargetSummary& t : reader.targets()) names += (names.empty() ? "" : ", ") + t.name;
-      usage_error("warp", options.archive + ": no target \"" + name + "\"; it holds " +
-                              (names.empty() ? std::string("none") : names) + " (xparam inspect lists them)");
-    }
+    if (!row) refuse_unknown_target("warp", reader, name, true);
     if (std::find(rows.begin(), rows.end(), *row) == rows.end()) rows.push_back(*row);
   }
   std::sort(rows.begin(), rows.end());  // the archive's order, whatever order they were named in

@@ -117,15 +117,6 @@ inline fs::path read_back_script() {
   return fs::path(XPARAM_SOURCE_DIR) / "tests" / "io" / "archive_read_back.py";
 }
 
-// Single-quoted for the shell (built by appending: GCC 12 misreports "literal" + std::string&&
-// under -Wrestrict).
-inline std::string quoted(const fs::path& path) {
-  std::string text = "'";
-  text += path.string();
-  text += "'";
-  return text;
-}
-
 // Exit status of a shell command (-1 when it did not exit normally).
 inline int run_status(const std::string& command) {
   const int status = std::system(command.c_str());

@@ -18,13 +18,6 @@ struct ProgramRun {
   std::string out;  // stdout and stderr
 };
 
-// Built with a stream: GCC 12 at -O3 reports a false -Wrestrict on "'" + string + "'".
-inline std::string quoted(const std::filesystem::path& path) {
-  std::ostringstream out;
-  out << "'" << path.string() << "'";
-  return out.str();
-}
-
 inline ProgramRun run(const std::string& arguments, const std::string& test_name) {
   const auto output = fresh_temp_dir(test_name) / "output.txt";
   const std::string command = arguments + " > " + quoted(output) + " 2>&1";

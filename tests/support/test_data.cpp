@@ -21,6 +21,14 @@ std::filesystem::path shared_data_dir() {
 
 std::filesystem::path xparam_binary() { return XPARAM_BINARY; }
 
+// Built by appending: GCC 12 misreports "literal" + std::string&& under -Wrestrict.
+std::string quoted(const std::filesystem::path& path) {
+  std::string text = "'";
+  text += path.string();
+  text += "'";
+  return text;
+}
+
 std::filesystem::path fresh_temp_dir(const std::string& name) {
   // The process id keeps parallel ctest runs of different tests apart.
   const auto dir =

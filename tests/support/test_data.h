@@ -17,6 +17,9 @@ std::filesystem::path shared_data_dir();
 /// Path of the built `xparam` program.
 std::filesystem::path xparam_binary();
 
+/// `path` single-quoted for the shell.
+std::string quoted(const std::filesystem::path& path);
+
 /// A fresh, empty directory for one test's outputs (under the system temp directory).
 std::filesystem::path fresh_temp_dir(const std::string& name);
 
