@@ -1,5 +1,6 @@
 #include "core/validation.h"
 
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 
 #include <Eigen/Geometry>
@@ -58,27 +59,6 @@ std::vector<const Problem*> MeshReport::repaired() const {
 }
 
 namespace {
-
-// Union-find with path halving; roots are deterministic for a given sequence of unions.
-class DisjointSets {
- public:
-  explicit DisjointSets(int n) : parent_(static_cast<size_t>(n)) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];
-      x = parent_[x];
-    }
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 // One face's use of an undirected edge (a < b); `forward` when the face goes a -> b.
 struct EdgeUse {

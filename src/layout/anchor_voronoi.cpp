@@ -1,13 +1,26 @@
 #include "layout/anchor_voronoi.h"
 
+#include "core/disjoint_sets.h"
+
 #include <algorithm>
 #include <functional>
 #include <limits>
 #include <map>
 #include <queue>
+#include <set>
 #include <tuple>
+#include <utility>
 
 namespace xparam {
+namespace {
+
+// The cells of edge e's two ends.
+std::pair<int, int> cells_of(const Mesh& mesh, const AnchorVoronoi& voronoi, EdgeHandle e) {
+  const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
+  return {voronoi.cell[mesh.from_vertex_handle(h).idx()], voronoi.cell[mesh.to_vertex_handle(h).idx()]};
+}
+
+}  // namespace
 
 AnchorVoronoi anchor_voronoi(const Mesh& mesh, const std::vector<VertexHandle>& anchors) {
   const std::size_t n = mesh.n_vertices();
@@ -35,20 +48,38 @@ AnchorVoronoi anchor_voronoi(const Mesh& mesh, const std::vector<VertexHandle>& 
       }
     }
   }
+  // Per touching pair: the length estimate, and its border edges, joined into stretches where
+  // two of them bound one face (a face whose corners lie in three cells ends a stretch).
   std::map<std::pair<int, int>, double> border;
+  DisjointSets stretches(static_cast<int>(mesh.n_edges()));
+  std::vector<char> on_border(mesh.n_edges(), 0);
   for (const EdgeHandle e : mesh.edges()) {
-    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
-    const int u = mesh.from_vertex_handle(h).idx();
-    const int v = mesh.to_vertex_handle(h).idx();
-    const int cu = voronoi.cell[u];
-    const int cv = voronoi.cell[v];
+    const auto [cu, cv] = cells_of(mesh, voronoi, e);
     if (cu == cv || cu < 0 || cv < 0) continue;
-    const double length = voronoi.distance[u] + mesh.calc_edge_length(e) + voronoi.distance[v];
-    const auto key = std::minmax(cu, cv);
-    const auto [it, inserted] = border.emplace(key, length);
+    on_border[e.idx()] = 1;
+    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
+    const double length = voronoi.distance[mesh.from_vertex_handle(h).idx()] + mesh.calc_edge_length(e) +
+                          voronoi.distance[mesh.to_vertex_handle(h).idx()];
+    const auto [it, inserted] = border.emplace(std::minmax(cu, cv), length);
     if (!inserted) it->second = std::min(it->second, length);
   }
-  for (const auto& [pair, length] : border) voronoi.neighbours.push_back({pair.first, pair.second, length});
+  for (const FaceHandle f : mesh.faces()) {
+    std::vector<int> border_edges;
+    for (const EdgeHandle e : mesh.fe_range(f)) {
+      if (on_border[e.idx()]) border_edges.push_back(e.idx());
+    }
+    if (border_edges.size() == 2) stretches.unite(border_edges[0], border_edges[1]);
+  }
+  std::map<std::pair<int, int>, std::set<int>> stretch_roots;
+  for (const EdgeHandle e : mesh.edges()) {
+    if (!on_border[e.idx()]) continue;
+    const auto [cu, cv] = cells_of(mesh, voronoi, e);
+    stretch_roots[std::minmax(cu, cv)].insert(stretches.find(e.idx()));
+  }
+  for (const auto& [pair, length] : border) {
+    voronoi.neighbours.push_back(
+        {pair.first, pair.second, length, static_cast<int>(stretch_roots[pair].size())});
+  }
   return voronoi;
 }
 

@@ -17,6 +17,10 @@ struct AnchorNeighbours {
   int a = -1;           ///< smaller anchor index
   int b = -1;           ///< larger anchor index
   double length = 0.0;  ///< 3-D units
+  /// Separate stretches of border the cells share: 1 for an intrinsic Delaunay edge; 2 or more
+  /// where the cells meet on two sides of something (a limb or a neck with an anchor at its
+  /// front and one at its back), so an edge between them may pass either way.
+  int borders = 1;
 };
 
 /// The Voronoi partition of one mesh by its anchors.

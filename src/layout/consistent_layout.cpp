@@ -1,6 +1,7 @@
 #include "layout/consistent_layout.h"
 
 #include "core/anchors.h"
+#include "core/disjoint_sets.h"
 #include "core/errors.h"
 #include "core/provenance.h"
 #include "layout/anchor_voronoi.h"
@@ -12,7 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <numeric>
+#include <set>
 #include <sstream>
 
 namespace xparam {
@@ -97,26 +98,6 @@ struct Candidate {
   }
 };
 
-// Union-find over anchors for the spanning tree.
-class Components {
- public:
-  explicit Components(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int a) {
-    while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
-    return a;
-  }
-  bool join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return false;
-    parent_[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-
- private:
-  std::vector<int> parent_;
-};
-
 // The construction: shared combinatorics (edges, rotations) plus per-side labels.
 class LayoutBuilder {
  public:
@@ -133,8 +114,11 @@ class LayoutBuilder {
     }
   }
 
+  // `candidates` in tree order (tree_order): the tree decides how the layout winds round the
+  // anchors, since once it is in, every face is a disc and a diagonal's route inside it is fixed
+  // up to isotopy.
   void build_tree(const std::vector<Candidate>& candidates) {
-    Components components(n_);
+    DisjointSets components(n_);
     for (const Candidate& c : candidates) {
       if (components.find(c.a) == components.find(c.b)) continue;
       // The sphere minus a forest is one face: the source path may use any corners, and the
@@ -147,7 +131,7 @@ class LayoutBuilder {
       XP_ASSERT_MSG(path1.found(),
                     "no target path between anchors " << c.a << " and " << c.b << " in the forest");
       add_edge(c.a, ga, c.b, gb, path0, path1);
-      components.join(c.a, c.b);
+      components.unite(c.a, c.b);
       ++result_.tree_edges;
     }
     XP_ASSERT_EQ(result_.tree_edges, n_ - 1);
@@ -298,6 +282,28 @@ class LayoutBuilder {
   std::array<TraceScratch, 2> scratch_;
 };
 
+// The candidates, those whose Voronoi cells share exactly one stretch of border on both meshes
+// first, each part in key order. Where two cells meet in two stretches (an anchor at the front
+// of the neck and one at its back meet on its left and on its right), the shortest paths between
+// them round either side are nearly tied and the two meshes may choose differently: the tree then
+// winds round the neck one way on the template and the other way on the target, a turn of the
+// map that no later step can undo, since every face is a disc once the tree is in (SHREC'19
+// shape 1 with the 29 anthropometric landmarks: the head mapped beside the shoulder, 48 strictly
+// folded faces; 0 with this order). A pair with one stretch has one way between its anchors.
+std::vector<Candidate> tree_order(std::vector<Candidate> candidates, const std::array<AnchorVoronoi, 2>& voronoi) {
+  std::set<std::pair<int, int>> on_target;
+  for (const AnchorNeighbours& pair : voronoi[1].neighbours) {
+    if (pair.borders == 1) on_target.emplace(pair.a, pair.b);
+  }
+  std::set<std::pair<int, int>> on_both;
+  for (const AnchorNeighbours& pair : voronoi[0].neighbours) {
+    if (pair.borders == 1 && on_target.count({pair.a, pair.b})) on_both.emplace(pair.a, pair.b);
+  }
+  std::stable_partition(candidates.begin(), candidates.end(),
+                        [&](const Candidate& c) { return on_both.count(std::minmax(c.a, c.b)) > 0; });
+  return candidates;
+}
+
 }  // namespace
 
 ConsistentLayoutResult build_consistent_layout(const Mesh& source,
@@ -357,7 +363,7 @@ ConsistentLayoutResult build_consistent_layout(const Mesh& source,
   result.seconds.candidates = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  builder.build_tree(candidates);
+  builder.build_tree(settings.unambiguous_tree_first ? tree_order(candidates, voronoi) : candidates);
   result.seconds.tree = seconds_since(start);
 
   start = std::chrono::steady_clock::now();

@@ -29,6 +29,12 @@ struct ConsistentLayoutSettings {
   /// Take the Voronoi-neighbour diagonals in key order (step 3). When false, step 4 alone
   /// triangulates the faces the tree leaves (worse shapes; tests use it to exercise step 4).
   bool greedy_diagonals = true;
+  /// Build the spanning tree from the anchor pairs whose Voronoi cells share one stretch of
+  /// border on both meshes first (tree_order in the source). When false, the tree takes the
+  /// pairs in key order alone, as Kraevoy and Sheffer's greedy does: a pair that may be joined
+  /// round either side of a limb can then wind differently on the two meshes. Kept so the
+  /// retries that repair such maps can still be exercised and compared.
+  bool unambiguous_tree_first = true;
 };
 
 /// Wall-clock seconds of each stage of the construction.

@@ -1,6 +1,6 @@
 #include "measure/body_measurements.h"
 
-#include "measure/prism_meshes.h"
+#include "support/prism_meshes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 #pragma once
-// Closed prisms built by hand for the measurement tests: a polygon in the xy-plane extruded
+// Closed prisms built by hand for the tests: a polygon in the xy-plane extruded
 // along z through several rings, capped by fans from the polygon's centre.
 #include "core/mesh.h"
 #include "core/mesh_builder.h"
