@@ -9,6 +9,7 @@
 #include "layout/refinement.h"
 #include "layout/vertex_labels.h"
 
+#include <Eigen/Geometry>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
@@ -99,6 +100,12 @@ struct Candidate {
 };
 
 // The construction: shared combinatorics (edges, rotations) plus per-side labels.
+// A tree edge's target path keeps within kCorridorRadius times the template path's length of
+// that path, once the target is brought onto the template by the similarity that best fits the
+// kCorridorFitAnchors anchors nearest the edge's two ends (LayoutBuilder::corridor).
+constexpr int kCorridorFitAnchors = 8;
+constexpr double kCorridorRadius = 0.35;
+
 class LayoutBuilder {
  public:
   LayoutBuilder(ConsistentLayoutResult& result, const std::vector<double>& key)
@@ -127,7 +134,12 @@ class LayoutBuilder {
       XP_ASSERT_MSG(path0.found(),
                     "no source path between anchors " << c.a << " and " << c.b << " in the forest");
       const auto [ga, gb] = end_corners(0, path0);
-      const TracedPath path1 = trace(1, c.a, ga, c.b, gb);
+      // Through the same corners the target's shortest path may still pass the other way round
+      // a limb, the head or the trunk (nothing marks the sides of a protrusion without anchors):
+      // it keeps near where the template's runs, when it can.
+      TracedPath path1;
+      if (result_.settings.tree_corridor) path1 = trace(1, c.a, ga, c.b, gb, corridor(c.a, c.b, path0));
+      if (!path1.found()) path1 = trace(1, c.a, ga, c.b, gb);
       XP_ASSERT_MSG(path1.found(),
                     "no target path between anchors " << c.a << " and " << c.b << " in the forest");
       add_edge(c.a, ga, c.b, gb, path0, path1);
@@ -221,12 +233,53 @@ class LayoutBuilder {
 
   bool is_joined(int a, int b) const { return joined_[static_cast<std::size_t>(a) * n_ + b] != 0; }
 
-  TracedPath trace(int side, int a, int ga, int b, int gb) {
+  TracedPath trace(int side, int a, int ga, int b, int gb, const PassableVertex& passable = {}) {
     const LayoutSide& s = layout_.sides[side];
     const auto first = wedge_vertices(s, labels_[side], corner_wedge(layout_, side, a, ga));
     const auto last = wedge_vertices(s, labels_[side], corner_wedge(layout_, side, b, gb));
     return trace_path(s.mesh, labels_[side], s.anchor_vertices[a], first, s.anchor_vertices[b], last,
-                      scratch_[side]);
+                      scratch_[side], passable);
+  }
+
+  // The target vertices near the template's path between anchors a and b once the target is
+  // brought onto the template by the similarity that best fits the anchors near a and b.
+  PassableVertex corridor(int a, int b, const TracedPath& template_path) const {
+    const Mesh& source = layout_.sides[0].mesh;
+    const Mesh& target = layout_.sides[1].mesh;
+    const auto anchor_position = [&](int side, int k) {
+      return position(layout_.sides[side].mesh, layout_.sides[side].anchor_vertices[k]);
+    };
+    // The anchors nearest a and b on the template (a and b among them).
+    std::vector<std::pair<double, int>> by_distance;
+    for (int k = 0; k < n_; ++k) {
+      const double d = std::min((anchor_position(0, k) - anchor_position(0, a)).norm(),
+                                (anchor_position(0, k) - anchor_position(0, b)).norm());
+      by_distance.push_back({d, k});
+    }
+    std::sort(by_distance.begin(), by_distance.end());
+    const int used = std::min<int>(n_, kCorridorFitAnchors);
+    Eigen::Matrix3Xd from(3, used), to(3, used);
+    for (int i = 0; i < used; ++i) {
+      from.col(i) = anchor_position(1, by_distance[i].second);
+      to.col(i) = anchor_position(0, by_distance[i].second);
+    }
+    const Eigen::Matrix4d fit = Eigen::umeyama(from, to, true);
+    std::vector<Eigen::Vector3d> polyline;
+    double length = 0.0;
+    for (const VertexHandle v : template_path.vertices) {
+      if (!polyline.empty()) length += (position(source, v) - polyline.back()).norm();
+      polyline.push_back(position(source, v));
+    }
+    const double radius = kCorridorRadius * length;
+    return [&target, fit, polyline = std::move(polyline), radius](int v) {
+      const Eigen::Vector3d x = (fit * position(target, VertexHandle(v)).homogeneous()).head<3>();
+      for (std::size_t k = 1; k < polyline.size(); ++k) {
+        const Eigen::Vector3d e = polyline[k] - polyline[k - 1];
+        const double t = std::clamp((x - polyline[k - 1]).dot(e) / std::max(e.squaredNorm(), 1e-300), 0.0, 1.0);
+        if ((x - polyline[k - 1] - t * e).norm() <= radius) return true;
+      }
+      return false;
+    };
   }
 
   // Trace corner ga -> corner gb on both meshes (independent searches, run in parallel) and keep

@@ -32,9 +32,14 @@ struct ConsistentLayoutSettings {
   /// Build the spanning tree from the anchor pairs whose Voronoi cells share one stretch of
   /// border on both meshes first (tree_order in the source). When false, the tree takes the
   /// pairs in key order alone, as Kraevoy and Sheffer's greedy does: a pair that may be joined
-  /// round either side of a limb can then wind differently on the two meshes. Kept so the
-  /// retries that repair such maps can still be exercised and compared.
+  /// round either side of a limb can then wind differently on the two meshes.
   bool unambiguous_tree_first = true;
+  /// Keep each tree edge's target path near the template's, once the target is brought onto the
+  /// template by the similarity that best fits the anchors near the edge (LayoutBuilder::corridor
+  /// in the source); when false, or when no path fits, the target's shortest path through the
+  /// same corners. With both settings false the layout is built as before session 16, which the
+  /// tests of the retries use to make the maps those retries repair.
+  bool tree_corridor = true;
 };
 
 /// Wall-clock seconds of each stage of the construction.

@@ -51,7 +51,8 @@ int wedge_of(const LayoutSide& side, const VertexLabels& labels, HalfedgeHandle 
 
 TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle from,
                       const std::vector<VertexHandle>& first, VertexHandle to,
-                      const std::vector<VertexHandle>& last, TraceScratch& scratch) {
+                      const std::vector<VertexHandle>& last, TraceScratch& scratch,
+                      const PassableVertex& passable) {
   const std::size_t n = mesh.n_vertices();
   if (scratch.stamp.size() < n) {
     scratch.distance.resize(n);
@@ -80,8 +81,9 @@ TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle
     queue.emplace(d, v);
   };
   const Eigen::Vector3d source = position(mesh, from);
+  const auto may_pass = [&](VertexHandle v) { return !labels.blocked(v) && (!passable || passable(v.idx())); };
   for (const VertexHandle v : first) {
-    if (!labels.blocked(v)) reach(v.idx(), (position(mesh, v) - source).norm(), -1);
+    if (may_pass(v)) reach(v.idx(), (position(mesh, v) - source).norm(), -1);
   }
   double best = std::numeric_limits<double>::infinity();
   int best_last = -1;
@@ -101,7 +103,7 @@ TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle
       }
     }
     for (const VertexHandle w : mesh.vv_range(vh)) {
-      if (labels.blocked(w)) continue;
+      if (!may_pass(w)) continue;
       reach(w.idx(), d + (position(mesh, w) - p).norm(), v);
     }
   }

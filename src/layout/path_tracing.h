@@ -8,6 +8,7 @@
 #include "layout/layout.h"
 #include "layout/vertex_labels.h"
 
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -48,11 +49,16 @@ struct TraceScratch {
   unsigned current = 0;
 };
 
+/// Which vertices (by id) a path may pass through besides being free; empty: every free vertex.
+using PassableVertex = std::function<bool(int)>;
+
 /// Shortest path (Euclidean edge lengths, Dijkstra) from anchor vertex `from` to anchor vertex
 /// `to` whose second vertex is one of `first` and whose second-to-last is one of `last`, through
-/// free vertices only. Deterministic: ties go to the smaller vertex id.
+/// free vertices only (and only `passable` ones, when given). Deterministic: ties go to the
+/// smaller vertex id.
 TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle from,
                       const std::vector<VertexHandle>& first, VertexHandle to,
-                      const std::vector<VertexHandle>& last, TraceScratch& scratch);
+                      const std::vector<VertexHandle>& last, TraceScratch& scratch,
+                      const PassableVertex& passable = {});
 
 }  // namespace xparam

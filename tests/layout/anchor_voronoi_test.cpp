@@ -1,5 +1,6 @@
 // The anchors' Voronoi cells on a tube, where an anchor at its front and one at its back meet on
-// both sides, and the layout tree that must not be built from such a pair.
+// both sides, and the layout tree that must not wind round the tube one way on one mesh and the
+// other way on the other: not built from such a pair, and its target paths kept near the source's.
 #include "layout/anchor_voronoi.h"
 #include "layout/consistent_layout.h"
 #include "layout_fixtures.h"
@@ -82,6 +83,26 @@ TEST(ConsistentLayout, AnEdgeThatMayPassEitherSideOfATubePassesTheSameSideOnBoth
   const double target_y = mean_y(layout, 1, front_back);
   EXPECT_GT(std::abs(source_y), 0.5);
   EXPECT_GT(source_y * target_y, 0.0) << "source " << source_y << ", target " << target_y;
+}
+
+TEST(ConsistentLayout, ATreeEdgeRoundATubeKeepsToTheTemplatesSideOnTheTarget) {
+  // The same anchors with the tree in key order: the front-back edge, the shortest pair, is now
+  // the first tree edge, traced freely on the source; on the target its path keeps near the
+  // source's (the corridor), not on the side its own shortest path would take.
+  const Mesh mesh = tube();
+  ConsistentLayoutSettings settings;
+  settings.unambiguous_tree_first = false;
+  const ConsistentLayoutResult result =
+      build_consistent_layout(mesh, test::handles({on_middle_ring(0), on_middle_ring(11), kBottom, kTop}), mesh,
+                              test::handles({on_middle_ring(0), on_middle_ring(13), kBottom, kTop}), settings);
+  test::expect_consistent(result.layout, "tube, tree in key order");
+  const Layout& layout = result.layout;
+  ASSERT_EQ(std::min(layout.edges[0].anchors[0], layout.edges[0].anchors[1]), 0);
+  ASSERT_EQ(std::max(layout.edges[0].anchors[0], layout.edges[0].anchors[1]), 1);
+  const double source_y = mean_y(layout, 0, 0);
+  const double target_y = mean_y(layout, 1, 0);
+  EXPECT_GT(source_y, 0.5);  // the source's back anchor lies towards +y
+  EXPECT_GT(target_y, 0.5) << "the target's own shortest path runs at y < 0";
 }
 
 }  // namespace
