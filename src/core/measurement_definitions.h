@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// Body measurements defined on the template (docs/measurements.md, schemas/measurements.schema.json):
-/// plane girths, straight distances and heights, each through template vertices, so that the same
-/// definition is evaluated on the template and, through the map, on every target
+/// plane girths, straight and geodesic distances and heights, each through template vertices, so
+/// that the same definition is evaluated on the template and, through the map, on every target
 /// (measure/body_measurements.h).
 
 #include <Eigen/Core>
@@ -19,6 +19,9 @@ enum class MeasurementKind {
   PlaneGirth,
   /// The length of the straight polyline through the points, in order (two points: their distance).
   Straight,
+  /// The length of the shortest path on the surface through the points, in order (two points:
+  /// their geodesic distance): a tape laid on the skin from landmark to landmark.
+  Geodesic,
   /// How far a point lies above the lowest point of the surface along an "up" direction (the
   /// height above the floor the body stands on).
   Height,
@@ -45,8 +48,8 @@ struct MeasurementDefinition {
   PlaneRule plane;        ///< PlaneGirth: the plane
   bool convex_hull = false;  ///< PlaneGirth: measure the section loop's convex hull (the tape measure)
   int near = -1;          ///< PlaneGirth: the section loop nearest this template vertex is measured
-  std::vector<int> points;  ///< Straight: the polyline's vertices (>= 2); Height: the one point
-  bool closed = false;      ///< Straight: the last point joins the first
+  std::vector<int> points;  ///< Straight, Geodesic: the path's vertices (>= 2); Height: the one point
+  bool closed = false;      ///< Straight, Geodesic: the last point joins the first
   Eigen::Vector3d up = Eigen::Vector3d::Zero();  ///< Height: the up direction, unit length
 };
 

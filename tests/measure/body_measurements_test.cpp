@@ -133,7 +133,10 @@ TEST(BodyMeasurements, ScalingTheBodyScalesEveryMeasurement) {
   MeasurementDefinition straight;
   straight.kind = MeasurementKind::Straight;
   straight.points = {0, 150};
-  set.measurements = {girth_through(64, {0, 0, 1}), girth_through(64, {0, 0, 1}, true), height, straight};
+  MeasurementDefinition geodesic = straight;
+  geodesic.kind = MeasurementKind::Geodesic;
+  set.measurements = {girth_through(64, {0, 0, 1}), girth_through(64, {0, 0, 1}, true), height, straight,
+                      geodesic};
   const std::vector<double> before = measure_surface(set, body, test::vertex_rows(body));
   const std::vector<double> after = measure_surface(set, scaled, test::vertex_rows(scaled));
   ASSERT_EQ(after.size(), before.size());
