@@ -14,7 +14,7 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-constexpr const char* kTypes = "\"plane_girth\", \"straight\", \"geodesic\" or \"height\"";
+constexpr const char* kTypes = "\"plane_girth\", \"straight\", \"geodesic\", \"height\" or \"curve_length\"";
 
 // "a", "b", "c": names listed in a message.
 template <typename Names>
@@ -109,6 +109,10 @@ class MeasurementJsonReader {
       m.points = {point(entry["point"], line, what + "\"point\": ")};
       if (!entry.contains("up")) fail(line, what + "expected \"up\": [x, y, z], the direction away from the floor");
       m.up = direction(entry["up"], line, what + "\"up\": ");
+    } else if (type == "curve_length") {
+      only_members(entry, {"name", "type", "description", "curve"}, line, what);
+      m.kind = MeasurementKind::CurveLength;
+      m.curve = curve(entry, line, what);
     } else {
       fail(line, what + "unknown type \"" + type + "\" (expected " + kTypes + ")");
     }
@@ -140,6 +144,25 @@ class MeasurementJsonReader {
     }
     if (entry.contains("hull")) m.convex_hull = boolean(entry["hull"], line, what + "\"hull\"");
     m.near = entry.contains("near") ? point(entry["near"], line, what + "\"near\": ") : plane.through.front();
+  }
+
+  // The index of the template curve a curve_length names.
+  int curve(const Json& entry, int line, const std::string& what) const {
+    if (!entry.contains("curve") || !entry["curve"].is_string())
+      fail(line, what + "expected \"curve\": the name of a feature curve of the template's curve file");
+    const std::string name = entry["curve"].get<std::string>();
+    const std::vector<std::string>& curves = on_.curve_names;
+    if (curves.empty())
+      fail(line,
+           what + "\"curve\": \"" + name +
+               "\" needs the template's feature curves: give the curve file (xparam batch --curves FILE)");
+    const auto found = std::find(curves.begin(), curves.end(), name);
+    if (found == curves.end()) {
+      fail(line, what + "\"curve\": \"" + name +
+                     "\" is not a curve of the template's curve file (its curves: " + quoted_list(curves) +
+                     ")");
+    }
+    return static_cast<int>(found - curves.begin());
   }
 
   std::vector<int> points(const Json& entry, const char* member, int line, const std::string& what) const {

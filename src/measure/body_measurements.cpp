@@ -72,7 +72,8 @@ double height(const MeasurementDefinition& m, const Mesh& surface, const Eigen::
 
 }  // namespace
 
-double measure_one(const MeasurementDefinition& measurement, const Mesh& surface, const Eigen::MatrixX3d& vertex_points) {
+double measure_one(const MeasurementDefinition& measurement, const Mesh& surface,
+                   const Eigen::MatrixX3d& vertex_points, const std::vector<double>& curve_lengths) {
   switch (measurement.kind) {
     case MeasurementKind::PlaneGirth:
       return plane_girth(measurement, surface, vertex_points);
@@ -82,15 +83,21 @@ double measure_one(const MeasurementDefinition& measurement, const Mesh& surface
       return geodesic(measurement, surface, vertex_points);
     case MeasurementKind::Height:
       return height(measurement, surface, vertex_points);
+    case MeasurementKind::CurveLength:
+      XP_ASSERT(measurement.curve >= 0 && static_cast<std::size_t>(measurement.curve) < curve_lengths.size());
+      return curve_lengths[static_cast<std::size_t>(measurement.curve)];
   }
   XP_ASSERT_MSG(false, "unknown measurement kind");
   return kNaN;
 }
 
-std::vector<double> measure_surface(const MeasurementSet& set, const Mesh& surface, const Eigen::MatrixX3d& vertex_points) {
+std::vector<double> measure_surface(const MeasurementSet& set, const Mesh& surface,
+                                    const Eigen::MatrixX3d& vertex_points,
+                                    const std::vector<double>& curve_lengths) {
   std::vector<double> values;
   values.reserve(set.measurements.size());
-  for (const MeasurementDefinition& m : set.measurements) values.push_back(measure_one(m, surface, vertex_points));
+  for (const MeasurementDefinition& m : set.measurements)
+    values.push_back(measure_one(m, surface, vertex_points, curve_lengths));
   return values;
 }
 

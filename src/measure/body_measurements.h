@@ -22,12 +22,17 @@ namespace xparam {
 /// the surface no path joins).
 /// \param vertex_points #template vertices x 3: where each template vertex (file numbering) lies
 ///        on `surface` (the template's own positions, or a target's remesh vertices)
-/// \pre every vertex index of `set` is a row of vertex_points
+/// \param curve_lengths per template feature curve (curve-file order), its length on `surface`:
+///        traced on the template's own faces, or its image traced on the target's
+///        (map/curve_tracing.h); may be empty when `set` has no curve_length
+/// \pre every vertex index of `set` is a row of vertex_points; every curve index of `set` an
+///      entry of curve_lengths
 std::vector<double> measure_surface(const MeasurementSet& set, const Mesh& surface,
-                                    const Eigen::MatrixX3d& vertex_points);
+                                    const Eigen::MatrixX3d& vertex_points,
+                                    const std::vector<double>& curve_lengths = {});
 
 /// One measurement of measure_surface.
 double measure_one(const MeasurementDefinition& measurement, const Mesh& surface,
-                   const Eigen::MatrixX3d& vertex_points);
+                   const Eigen::MatrixX3d& vertex_points, const std::vector<double>& curve_lengths = {});
 
 }  // namespace xparam
