@@ -118,13 +118,7 @@ TEST(TemplatePreparation, InwardFacingTemplateKeepsFileCornerOrder) {
 // measurement file is refused, naming the option that gives one.
 TEST(TemplatePreparation, CurveLengthsAndGeodesicsAreMeasuredOnTheTemplate) {
   const path dir = test::fresh_temp_dir("template_curve_lengths");
-  TemplateInputs inputs = test::man_template();
-  inputs.measurements = dir / "tapes.json";
-  test::write_file(inputs.measurements, R"({"unit": "m", "measurements": [
-      {"name": "arm", "type": "curve_length", "curve": "left arm"},
-      {"name": "waist", "type": "curve_length", "curve": "waist"},
-      {"name": "back", "type": "geodesic", "points": ["Cervicale", "BACK_BELLY_BUTTON"]},
-      {"name": "back_straight", "type": "straight", "points": ["Cervicale", "BACK_BELLY_BUTTON"]}]})");
+  TemplateInputs inputs = test::man_template_with_tapes(dir);
   const PreparedTemplate prepared = prepare_template(inputs);
   ASSERT_EQ(prepared.curves.size(), 2U);
   ASSERT_EQ(prepared.measurements.measurements.size(), 4U);
