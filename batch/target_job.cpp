@@ -13,6 +13,7 @@
 #include "io/mesh_loader.h"
 #include "io/sha256.h"
 #include "layout/anchor_swaps.h"
+#include "map/curve_tracing.h"
 #include "measure/body_measurements.h"
 
 #include <tbb/task_arena.h>
@@ -123,9 +124,13 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
     }
     record.curves.push_back(std::move(out));
   }
-  // The target's own surface, cut and measured at the images of the template's points.
+  // The target's own surface, cut and measured at the images of the template's points, and the
+  // template's curves as traced on it.
+  std::vector<double> curve_lengths;
+  for (const MappedCurve& curve : mapping.curves)
+    curve_lengths.push_back(polyline_length(curve.positions, curve.closed));
   const std::vector<double> measured =
-      measure_surface(prepared.measurements, target.loaded.mesh, record.remesh_vertices);
+      measure_surface(prepared.measurements, target.loaded.mesh, record.remesh_vertices, curve_lengths);
   record.measurements = Eigen::Map<const Eigen::VectorXd>(measured.data(), static_cast<Eigen::Index>(measured.size()));
 
   TargetMetrics& metrics = record.metrics;

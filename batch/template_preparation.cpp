@@ -10,6 +10,7 @@
 #include "io/curve_reader.h"
 #include "io/measurement_reader.h"
 #include "io/sha256.h"
+#include "map/curve_tracing.h"
 #include "measure/body_measurements.h"
 
 #include <array>
@@ -42,6 +43,19 @@ std::vector<int> anchor_file_vertices(const PreparedTemplate& prepared, const Pl
                                                   placed.anchors[a].input_point));
   }
   return vertices;
+}
+
+// The template's feature curves traced on its own faces (the identity carries every curve point
+// onto itself), as map_pair traces their images on a target: their lengths are the template's
+// curve_length values.
+std::vector<double> template_curve_lengths(const PreparedTemplate& prepared) {
+  const Mesh& mesh = prepared.loaded.mesh;
+  std::vector<double> lengths;
+  for (const FeatureCurve& curve : prepared.curves) {
+    const MappedCurve traced = trace_curve(curve, mesh, mesh, [](const SurfacePoint& p) { return p; });
+    lengths.push_back(polyline_length(traced.positions, traced.closed));
+  }
+  return lengths;
 }
 
 TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate& prepared,
@@ -86,7 +100,8 @@ TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate&
   if (!inputs.measurements.empty()) {
     record.measurements_file = inputs.measurements.string();
     record.measurements_sha256 = sha256_file_hex(inputs.measurements);
-    const std::vector<double> values = measure_surface(prepared.measurements, mesh, record.vertices);
+    const std::vector<double> values =
+        measure_surface(prepared.measurements, mesh, record.vertices, template_curve_lengths(prepared));
     record.measurement_values = Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
     for (const MeasurementDefinition& m : prepared.measurements.measurements) {
       record.measurement_names.push_back(m.name);
@@ -120,6 +135,7 @@ PreparedTemplate prepare_template(const TemplateInputs& inputs) {
     // Points name the anchors as placed on the template (file vertices) or file vertices.
     MeasurementTemplate on{{}, anchor_file_vertices(prepared, placed), order.file_vertices};
     for (const PlacedAnchor& anchor : placed.anchors) on.anchor_names.push_back(anchor.name);
+    for (const FeatureCurve& curve : prepared.curves) on.curve_names.push_back(curve.name);
     prepared.measurements = read_measurements(inputs.measurements, on);
   }
   prepared.record = make_record(inputs, prepared, placed);

@@ -1,9 +1,9 @@
 #pragma once
 /// \file
 /// Body measurements defined on the template (docs/measurements.md, schemas/measurements.schema.json):
-/// plane girths, straight distances and heights, each through template vertices, so that the same
-/// definition is evaluated on the template and, through the map, on every target
-/// (measure/body_measurements.h).
+/// plane girths, straight and geodesic distances and heights, each through template vertices, and
+/// the lengths of the template's feature curves, so that the same definition is evaluated on the
+/// template and, through the map, on every target (measure/body_measurements.h).
 
 #include <Eigen/Core>
 
@@ -19,9 +19,16 @@ enum class MeasurementKind {
   PlaneGirth,
   /// The length of the straight polyline through the points, in order (two points: their distance).
   Straight,
+  /// The length of the shortest path on the surface through the points, in order (two points:
+  /// their geodesic distance): a tape laid on the skin from landmark to landmark.
+  Geodesic,
   /// How far a point lies above the lowest point of the surface along an "up" direction (the
   /// height above the floor the body stands on).
   Height,
+  /// The length of one of the template's feature curves (core/feature_curves.h) as it lies on the
+  /// surface: on the template traced on its own faces, on a target its image traced on the
+  /// target's (map/curve_tracing.h); open or closed as the curve file says.
+  CurveLength,
 };
 
 /// How a girth's plane is chosen. Points are template vertex indices (file numbering).
@@ -45,9 +52,10 @@ struct MeasurementDefinition {
   PlaneRule plane;        ///< PlaneGirth: the plane
   bool convex_hull = false;  ///< PlaneGirth: measure the section loop's convex hull (the tape measure)
   int near = -1;          ///< PlaneGirth: the section loop nearest this template vertex is measured
-  std::vector<int> points;  ///< Straight: the polyline's vertices (>= 2); Height: the one point
-  bool closed = false;      ///< Straight: the last point joins the first
+  std::vector<int> points;  ///< Straight, Geodesic: the path's vertices (>= 2); Height: the one point
+  bool closed = false;      ///< Straight, Geodesic: the last point joins the first
   Eigen::Vector3d up = Eigen::Vector3d::Zero();  ///< Height: the up direction, unit length
+  int curve = -1;  ///< CurveLength: the template's feature curve, its index in the curve file
 };
 
 /// A measurement file as read and resolved against a template.

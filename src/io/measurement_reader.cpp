@@ -14,6 +14,16 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+constexpr const char* kTypes = "\"plane_girth\", \"straight\", \"geodesic\", \"height\" or \"curve_length\"";
+
+// "a", "b", "c": names listed in a message.
+template <typename Names>
+std::string quoted_list(const Names& names) {
+  std::string out;
+  for (const auto& name : names) out.append(out.empty() ? "\"" : ", \"").append(name).append("\"");
+  return out;
+}
+
 class MeasurementJsonReader {
  public:
   MeasurementJsonReader(const LocatedJson& document, const std::string& source, const MeasurementTemplate& on)
@@ -51,9 +61,7 @@ class MeasurementJsonReader {
                     const std::string& what) const {
     for (const auto& [member, value] : object.items()) {
       if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return member == a; })) {
-        std::string expected;
-        for (const char* a : allowed) expected.append(expected.empty() ? "\"" : ", \"").append(a).append("\"");
-        fail(line, what + "unknown member \"" + member + "\" (expected " + expected + ")");
+        fail(line, what + "unknown member \"" + member + "\" (expected " + quoted_list(allowed) + ")");
       }
     }
   }
@@ -78,20 +86,22 @@ class MeasurementJsonReader {
     m.name = entry["name"].get<std::string>();
     const std::string what = "measurement \"" + m.name + "\": ";
     if (!entry.contains("type") || !entry["type"].is_string())
-      fail(line, what + "expected \"type\": \"plane_girth\", \"straight\" or \"height\"");
+      fail(line, what + "expected \"type\": " + kTypes);
     const std::string type = entry["type"].get<std::string>();
     if (type == "plane_girth") {
       only_members(entry, {"name", "type", "description", "through", "normal", "normal_from_to", "hull", "near"}, line,
                    what);
       m.kind = MeasurementKind::PlaneGirth;
       read_plane(entry, line, what, m);
-    } else if (type == "straight") {
+    } else if (type == "straight" || type == "geodesic") {
       only_members(entry, {"name", "type", "description", "points", "closed"}, line, what);
-      m.kind = MeasurementKind::Straight;
+      m.kind = type == "straight" ? MeasurementKind::Straight : MeasurementKind::Geodesic;
       m.points = points(entry, "points", line, what);
-      if (m.points.size() < 2) fail(line, what + "\"points\" needs at least 2 points");
+      if (m.points.size() < 2)
+        fail(line, what + "\"points\" needs at least 2 points (the " + type +
+                       " path runs from the first to the last)");
       if (entry.contains("closed")) m.closed = boolean(entry["closed"], line, what + "\"closed\"");
-      if (m.closed && m.points.size() < 3) fail(line, what + "a closed polyline needs at least 3 points");
+      if (m.closed && m.points.size() < 3) fail(line, what + "a closed path needs at least 3 points");
     } else if (type == "height") {
       only_members(entry, {"name", "type", "description", "point", "up"}, line, what);
       m.kind = MeasurementKind::Height;
@@ -99,8 +109,12 @@ class MeasurementJsonReader {
       m.points = {point(entry["point"], line, what + "\"point\": ")};
       if (!entry.contains("up")) fail(line, what + "expected \"up\": [x, y, z], the direction away from the floor");
       m.up = direction(entry["up"], line, what + "\"up\": ");
+    } else if (type == "curve_length") {
+      only_members(entry, {"name", "type", "description", "curve"}, line, what);
+      m.kind = MeasurementKind::CurveLength;
+      m.curve = curve(entry, line, what);
     } else {
-      fail(line, what + "unknown type \"" + type + "\" (expected \"plane_girth\", \"straight\" or \"height\")");
+      fail(line, what + "unknown type \"" + type + "\" (expected " + kTypes + ")");
     }
     return m;
   }
@@ -130,6 +144,25 @@ class MeasurementJsonReader {
     }
     if (entry.contains("hull")) m.convex_hull = boolean(entry["hull"], line, what + "\"hull\"");
     m.near = entry.contains("near") ? point(entry["near"], line, what + "\"near\": ") : plane.through.front();
+  }
+
+  // The index of the template curve a curve_length names.
+  int curve(const Json& entry, int line, const std::string& what) const {
+    if (!entry.contains("curve") || !entry["curve"].is_string())
+      fail(line, what + "expected \"curve\": the name of a feature curve of the template's curve file");
+    const std::string name = entry["curve"].get<std::string>();
+    const std::vector<std::string>& curves = on_.curve_names;
+    if (curves.empty())
+      fail(line,
+           what + "\"curve\": \"" + name +
+               "\" needs the template's feature curves: give the curve file (xparam batch --curves FILE)");
+    const auto found = std::find(curves.begin(), curves.end(), name);
+    if (found == curves.end()) {
+      fail(line, what + "\"curve\": \"" + name +
+                     "\" is not a curve of the template's curve file (its curves: " + quoted_list(curves) +
+                     ")");
+    }
+    return static_cast<int>(found - curves.begin());
   }
 
   std::vector<int> points(const Json& entry, const char* member, int line, const std::string& what) const {

@@ -4,7 +4,8 @@
 /// `{"unit": "m", "landmarks": {"Lt. Acromion": {"vertex": 1862}}, "measurements": [{"name":
 /// "shoulder_width", "type": "straight", "points": ["Lt. Acromion", "Rt. Acromion"]}, ...]}`.
 /// A point is a name (a landmark of the file, else an anchor of the template) or
-/// {"vertex": i}, a 0-based template vertex; every point is resolved to a template vertex here.
+/// {"vertex": i}, a 0-based template vertex; every point is resolved to a template vertex here,
+/// and a curve_length's curve name to the template curve's index.
 
 #include "core/measurement_definitions.h"
 
@@ -19,6 +20,9 @@ struct MeasurementTemplate {
   std::vector<std::string> anchor_names;  ///< the template's anchors
   std::vector<int> anchor_vertices;       ///< their template vertices (file numbering)
   int n_vertices = 0;                     ///< template vertices (file numbering)
+  /// The template's feature curves in curve-file order (a curve_length names one); empty when
+  /// the batch has no curve file.
+  std::vector<std::string> curve_names = {};
 };
 
 /// Read and resolve a measurement file against the template.

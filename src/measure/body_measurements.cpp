@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 #include "measure/plane_section.h"
+#include "measure/surface_geodesic.h"
 
 #include <Eigen/Geometry>
 
@@ -55,6 +56,13 @@ double straight(const MeasurementDefinition& m, const Eigen::MatrixX3d& vertex_p
   return total;
 }
 
+// A tape on the skin: the shortest path on the surface through the points' images.
+double geodesic(const MeasurementDefinition& m, const Mesh& surface, const Eigen::MatrixX3d& vertex_points) {
+  std::vector<Eigen::Vector3d> points;
+  for (const int vertex : m.points) points.push_back(point_of(vertex_points, vertex));
+  return surface_geodesic(surface, points, m.closed).length;
+}
+
 // Above the floor: the lowest surface vertex along `up`.
 double height(const MeasurementDefinition& m, const Mesh& surface, const Eigen::MatrixX3d& vertex_points) {
   double floor = std::numeric_limits<double>::infinity();
@@ -64,23 +72,32 @@ double height(const MeasurementDefinition& m, const Mesh& surface, const Eigen::
 
 }  // namespace
 
-double measure_one(const MeasurementDefinition& measurement, const Mesh& surface, const Eigen::MatrixX3d& vertex_points) {
+double measure_one(const MeasurementDefinition& measurement, const Mesh& surface,
+                   const Eigen::MatrixX3d& vertex_points, const std::vector<double>& curve_lengths) {
   switch (measurement.kind) {
     case MeasurementKind::PlaneGirth:
       return plane_girth(measurement, surface, vertex_points);
     case MeasurementKind::Straight:
       return straight(measurement, vertex_points);
+    case MeasurementKind::Geodesic:
+      return geodesic(measurement, surface, vertex_points);
     case MeasurementKind::Height:
       return height(measurement, surface, vertex_points);
+    case MeasurementKind::CurveLength:
+      XP_ASSERT(measurement.curve >= 0 && static_cast<std::size_t>(measurement.curve) < curve_lengths.size());
+      return curve_lengths[static_cast<std::size_t>(measurement.curve)];
   }
   XP_ASSERT_MSG(false, "unknown measurement kind");
   return kNaN;
 }
 
-std::vector<double> measure_surface(const MeasurementSet& set, const Mesh& surface, const Eigen::MatrixX3d& vertex_points) {
+std::vector<double> measure_surface(const MeasurementSet& set, const Mesh& surface,
+                                    const Eigen::MatrixX3d& vertex_points,
+                                    const std::vector<double>& curve_lengths) {
   std::vector<double> values;
   values.reserve(set.measurements.size());
-  for (const MeasurementDefinition& m : set.measurements) values.push_back(measure_one(m, surface, vertex_points));
+  for (const MeasurementDefinition& m : set.measurements)
+    values.push_back(measure_one(m, surface, vertex_points, curve_lengths));
   return values;
 }
 

@@ -48,6 +48,20 @@ inline void write_file(const fs::path& path, const std::string& text) {
   out << text;
 }
 
+// The README's template with a measurement file written to `dir`: "arm" and "waist", the lengths of
+// the curves "left arm" and "waist" (the second and the first of its curve file), "back", the
+// geodesic from Cervicale to BACK_BELLY_BUTTON, and "back_straight", the straight line between them.
+inline TemplateInputs man_template_with_tapes(const fs::path& dir) {
+  TemplateInputs inputs = man_template();
+  inputs.measurements = dir / "tapes.json";
+  write_file(inputs.measurements, R"({"unit": "m", "measurements": [
+      {"name": "arm", "type": "curve_length", "curve": "left arm"},
+      {"name": "waist", "type": "curve_length", "curve": "waist"},
+      {"name": "back", "type": "geodesic", "points": ["Cervicale", "BACK_BELLY_BUTTON"]},
+      {"name": "back_straight", "type": "straight", "points": ["Cervicale", "BACK_BELLY_BUTTON"]}]})");
+  return inputs;
+}
+
 // Copy every file of the named sample targets (NAME.*) into `dir`.
 inline void copy_sample_targets(const fs::path& dir, const std::vector<std::string>& names) {
   fs::create_directories(dir);

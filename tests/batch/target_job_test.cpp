@@ -4,6 +4,9 @@
 
 #include "batch/target_discovery.h"
 #include "batch_library_support.h"
+#include "io/mesh_loader.h"
+#include "map/curve_tracing.h"
+#include "measure/surface_geodesic.h"
 #include "support/plain_obj.h"
 
 #include <gtest/gtest.h>
@@ -92,6 +95,38 @@ TEST(TargetJob, CorrespondenceIsInTheTargetFilesCornerOrder) {
     for (int k = 0; k < 3; ++k) p += record.corr_bary(v, k) * obj.vertices[static_cast<std::size_t>(f[k])];
     ASSERT_LT((p - record.remesh_vertices.row(v).transpose()).norm(), 1e-9) << "template vertex " << v;
   }
+}
+
+// The target's curve lengths are its transferred curves' (the archive's polylines), and its
+// geodesic runs on its own surface between the remesh's images of the template's points.
+TEST(TargetJob, CurveLengthsAndGeodesicsAreTakenOnTheTarget) {
+  const path dir = test::fresh_temp_dir("job_curve_lengths");
+  const PreparedTemplate prepared = prepare_template(test::man_template_with_tapes(dir));
+  std::filesystem::copy_file(test::sample_targets() / "woman.obj", dir / "woman.obj");
+  std::filesystem::copy_file(test::sample_targets() / "woman.anchors.json", dir / "woman.anchors.json");
+  const TargetRecord record = run_target(prepared, discover_targets(dir).at(0));
+  ASSERT_TRUE(record.ok) << record.error;
+  ASSERT_EQ(record.measurements.size(), 4);
+  ASSERT_EQ(record.curves.size(), 2U);
+  for (std::size_t c = 0; c < 2; ++c) {
+    std::vector<Eigen::Vector3d> polyline;
+    for (Eigen::Index p = 0; p < record.curves[c].xyz.rows(); ++p)
+      polyline.push_back(record.curves[c].xyz.row(p).transpose());
+    // Measurement 0 is the second curve's length, measurement 1 the first's.
+    EXPECT_EQ(record.measurements[static_cast<Eigen::Index>(1 - c)],
+              polyline_length(polyline, prepared.curves[c].closed))
+        << prepared.curves[c].name;
+    // Not the template's value: another body.
+    EXPECT_GT(std::abs(record.measurements[static_cast<Eigen::Index>(1 - c)] -
+                       prepared.record.measurement_values[static_cast<Eigen::Index>(1 - c)]),
+              0.01);
+  }
+  const Mesh woman = load_mesh(dir / "woman.obj").mesh;
+  const SurfaceGeodesic back = surface_geodesic(
+      woman, {record.remesh_vertices.row(829).transpose(), record.remesh_vertices.row(3022).transpose()},
+      false);
+  EXPECT_EQ(record.measurements[2], back.length);
+  EXPECT_GT(record.measurements[2], record.measurements[3]);
 }
 
 }  // namespace

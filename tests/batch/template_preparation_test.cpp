@@ -4,6 +4,7 @@
 #include "batch_test_support.h"
 #include "core/errors.h"
 #include "io/sha256.h"
+#include "map/curve_tracing.h"
 #include "support/plain_obj.h"
 
 #include <gtest/gtest.h>
@@ -111,6 +112,43 @@ TEST(TemplatePreparation, InwardFacingTemplateKeepsFileCornerOrder) {
   EXPECT_LT((position(prepared.loaded.mesh, on_mesh) - expected).norm(), 1e-12);
   // Anchor B (a face point) is recorded at the corner with barycentric 0.8: file corner 2 of face 100.
   EXPECT_EQ(record.anchor_vertices[1], obj.faces[100][1]);
+}
+
+// A curve_length is the template's curve traced on its own faces; without a curve file the
+// measurement file is refused, naming the option that gives one.
+TEST(TemplatePreparation, CurveLengthsAndGeodesicsAreMeasuredOnTheTemplate) {
+  const path dir = test::fresh_temp_dir("template_curve_lengths");
+  TemplateInputs inputs = test::man_template_with_tapes(dir);
+  const PreparedTemplate prepared = prepare_template(inputs);
+  ASSERT_EQ(prepared.curves.size(), 2U);
+  ASSERT_EQ(prepared.measurements.measurements.size(), 4U);
+  EXPECT_EQ(prepared.measurements.measurements[0].curve, 1);
+  EXPECT_EQ(prepared.measurements.measurements[1].curve, 0);
+  const Eigen::VectorXd& values = prepared.record.measurement_values;
+  ASSERT_EQ(values.size(), 4);
+  for (int c = 0; c < 2; ++c) {
+    const FeatureCurve& curve = prepared.curves[static_cast<std::size_t>(1 - c)];
+    const MappedCurve traced = trace_curve(curve, prepared.loaded.mesh, prepared.loaded.mesh,
+                                           [](const SurfacePoint& p) { return p; });
+    EXPECT_EQ(values[c], polyline_length(traced.positions, curve.closed)) << curve.name;
+    // Longer than the chords through the curve's own points (it follows the surface between them).
+    std::vector<Eigen::Vector3d> chords;
+    for (const SurfacePoint& p : curve.points) chords.push_back(position(prepared.loaded.mesh, p));
+    EXPECT_GT(values[c], polyline_length(chords, curve.closed)) << curve.name;
+  }
+  EXPECT_GT(values[2], values[3]);  // the tape over the back against the straight line
+
+  inputs.curves.clear();
+  try {
+    prepare_template(inputs);
+    ADD_FAILURE() << "a curve_length without curves was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "tapes.json:2: measurement \"arm\": \"curve\": \"left arm\" needs the "
+                  "template's feature curves: give the curve file (xparam batch --curves FILE)"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(TemplatePreparation, UnusableTemplatesAreInputErrors) {

@@ -87,6 +87,67 @@ TEST(MeasurementReader, ErrorsNameFileLineMeasurementAndFix) {
                      "m.json:3: measurement \"x\" is defined twice");
 }
 
+TEST(MeasurementReader, GeodesicTakesPointsLikeStraight) {
+  const MeasurementSet set = parse_measurements_json(R"({"unit": "m", "measurements": [
+      {"name": "back", "type": "geodesic", "points": ["HEAD_TOP", {"vertex": 3}]},
+      {"name": "loop", "type": "geodesic", "points": ["HEAD_TOP", "CROTCH", {"vertex": 3}], "closed": true}]})",
+                                                     "m.json", kTemplate);
+  ASSERT_EQ(set.measurements.size(), 2U);
+  EXPECT_EQ(set.measurements[0].kind, MeasurementKind::Geodesic);
+  EXPECT_EQ(set.measurements[0].points, (std::vector<int>{12, 3}));
+  EXPECT_FALSE(set.measurements[0].closed);
+  EXPECT_EQ(set.measurements[1].points, (std::vector<int>{12, 40, 3}));
+  EXPECT_TRUE(set.measurements[1].closed);
+  EXPECT_MESSAGE_HAS(
+      parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"back\", \"type\": \"geodesic\", "
+                  "\"points\": [\"HEAD_TOP\", \"Cervicale\"]}]}"),
+      "m.json:2: measurement \"back\": \"points\": \"Cervicale\" is neither a landmark of this file nor "
+      "an anchor of the template: add it to \"landmarks\" as {\"vertex\": i}");
+  EXPECT_MESSAGE_HAS(
+      parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"back\", \"type\": \"geodesic\", "
+                  "\"points\": [\"HEAD_TOP\"]}]}"),
+      "m.json:2: measurement \"back\": \"points\" needs at least 2 points (the geodesic path runs from "
+      "the first to the last)");
+  EXPECT_MESSAGE_HAS(
+      parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"back\", \"type\": \"geodesic\", "
+                  "\"points\": [\"HEAD_TOP\", \"CROTCH\"], \"closed\": true}]}"),
+      "m.json:2: measurement \"back\": a closed path needs at least 3 points");
+  EXPECT_MESSAGE_HAS(
+      parse_error("{\"unit\": \"m\", \"measurements\": [\n{\"name\": \"back\", \"type\": \"geodesic\", "
+                  "\"points\": [\"HEAD_TOP\", \"CROTCH\"], \"hull\": true}]}"),
+      "m.json:2: measurement \"back\": unknown member \"hull\"");
+}
+
+TEST(MeasurementReader, CurveLengthNamesATemplateCurve) {
+  MeasurementTemplate with_curves = kTemplate;
+  with_curves.curve_names = {"waist", "left arm"};
+  const MeasurementSet set = parse_measurements_json(R"({"unit": "m", "measurements": [
+      {"name": "arm", "type": "curve_length", "curve": "left arm", "description": "shoulder to wrist"}]})",
+                                                     "m.json", with_curves);
+  ASSERT_EQ(set.measurements.size(), 1U);
+  EXPECT_EQ(set.measurements[0].kind, MeasurementKind::CurveLength);
+  EXPECT_EQ(set.measurements[0].curve, 1);
+  const auto error = [&](const std::string& entry, const MeasurementTemplate& on) {
+    return test::error_message_of([&] {
+      parse_measurements_json("{\"unit\": \"m\", \"measurements\": [\n" + entry + "]}", "m.json", on);
+    });
+  };
+  EXPECT_MESSAGE_HAS(
+      error(R"({"name": "arm", "type": "curve_length", "curve": "right arm"})", with_curves),
+      "m.json:2: measurement \"arm\": \"curve\": \"right arm\" is not a curve of the template's curve "
+      "file (its curves: \"waist\", \"left arm\")");
+  EXPECT_MESSAGE_HAS(
+      error(R"({"name": "arm", "type": "curve_length", "curve": "left arm"})", kTemplate),
+      "m.json:2: measurement \"arm\": \"curve\": \"left arm\" needs the template's feature curves: give "
+      "the curve file (xparam batch --curves FILE)");
+  EXPECT_MESSAGE_HAS(error(R"({"name": "arm", "type": "curve_length"})", with_curves),
+                     "m.json:2: measurement \"arm\": expected \"curve\": the name of a feature curve");
+  EXPECT_MESSAGE_HAS(
+      error(R"({"name": "arm", "type": "curve_length", "curve": "waist", "points": [1, 2]})", with_curves),
+      "m.json:2: measurement \"arm\": unknown member \"points\" (expected \"name\", \"type\", "
+      "\"description\", \"curve\")");
+}
+
 TEST(MeasurementReader, TheBundledBodySetReadsOnTheSmplTemplate) {
   const AnchorSet anchors = read_anchors(test::data_path("human.anchors.json"));
   MeasurementTemplate smpl{{}, {}, 6890};

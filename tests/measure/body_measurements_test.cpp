@@ -1,5 +1,8 @@
 #include "measure/body_measurements.h"
 
+#include "core/closest_point.h"
+#include "core/feature_curves.h"
+#include "map/curve_tracing.h"
 #include "support/prism_meshes.h"
 
 #include <gtest/gtest.h>
@@ -120,6 +123,44 @@ TEST(BodyMeasurements, NoPlaneOrNoSectionGivesNaN) {
   EXPECT_TRUE(std::isnan(measure_one(beside, cylinder, lifted)));
 }
 
+TEST(BodyMeasurements, ClosedCurveRoundAPrismMeasuresItsPolygonsPerimeter) {
+  const int n = 16;
+  const double r = 0.5;
+  const Mesh prism = test::prism(test::regular_polygon(n, r), {0.0, 1.0, 2.0});
+  // Four points inside side faces at z = 0.8, a quarter of the way round from each other: the
+  // traced curve follows the horizontal section between them, round the 16-gon.
+  const ClosestPointIndex index(prism);
+  FeatureCurve curve{"waistline", {}, true};
+  for (const double along : {0.5, 4.5, 8.5, 12.5}) {
+    const double a0 = 2.0 * M_PI * std::floor(along) / n, a1 = 2.0 * M_PI * (std::floor(along) + 1) / n;
+    const Eigen::Vector3d p =
+        0.5 * Eigen::Vector3d(r * (std::cos(a0) + std::cos(a1)), r * (std::sin(a0) + std::sin(a1)), 1.6);
+    curve.points.push_back(index.closest(p).location);
+  }
+  const auto same_place = [](const SurfacePoint& p) { return p; };
+  const MappedCurve on_template = trace_curve(curve, prism, prism, same_place);
+  MeasurementDefinition m;
+  m.name = "waistline";
+  m.kind = MeasurementKind::CurveLength;
+  m.curve = 1;  // the second curve of the template's file
+  const double perimeter = n * 2.0 * r * std::sin(M_PI / n);
+  const Eigen::MatrixX3d rows = test::vertex_rows(prism);
+  EXPECT_NEAR(measure_one(m, prism, rows, {0.25, polyline_length(on_template.positions, on_template.closed)}),
+              perimeter, 1e-12);
+  // Not the four points' chords (a square inside the 16-gon).
+  EXPECT_LT(polyline_length({position(prism, curve.points[0]), position(prism, curve.points[1]),
+                             position(prism, curve.points[2]), position(prism, curve.points[3])},
+                            true),
+            perimeter - 0.1);
+  // On a copy scaled by 1.7 (the map the identity of faces and barycentrics): 1.7 times.
+  Mesh scaled = prism;
+  for (const VertexHandle v : scaled.vertices()) scaled.set_point(v, to_point(1.7 * position(prism, v)));
+  const MappedCurve on_target = trace_curve(curve, prism, scaled, same_place);
+  EXPECT_NEAR(
+      measure_one(m, scaled, 1.7 * rows, {0.25, polyline_length(on_target.positions, on_target.closed)}),
+      1.7 * perimeter, 1e-12);
+}
+
 TEST(BodyMeasurements, ScalingTheBodyScalesEveryMeasurement) {
   const Mesh body = test::prism(test::regular_polygon(64, 0.2), {0.0, 0.4, 1.0});
   Mesh scaled = body;
@@ -133,7 +174,10 @@ TEST(BodyMeasurements, ScalingTheBodyScalesEveryMeasurement) {
   MeasurementDefinition straight;
   straight.kind = MeasurementKind::Straight;
   straight.points = {0, 150};
-  set.measurements = {girth_through(64, {0, 0, 1}), girth_through(64, {0, 0, 1}, true), height, straight};
+  MeasurementDefinition geodesic = straight;
+  geodesic.kind = MeasurementKind::Geodesic;
+  set.measurements = {girth_through(64, {0, 0, 1}), girth_through(64, {0, 0, 1}, true), height, straight,
+                      geodesic};
   const std::vector<double> before = measure_surface(set, body, test::vertex_rows(body));
   const std::vector<double> after = measure_surface(set, scaled, test::vertex_rows(scaled));
   ASSERT_EQ(after.size(), before.size());
