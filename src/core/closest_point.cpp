@@ -12,11 +12,16 @@ namespace {
 // Faces per leaf: small leaves prune well; the exact triangle test is cheap.
 constexpr int kLeafSize = 4;
 
-TrianglePoint on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+// The parameter t in [0, 1] of segment [a, b]'s point a + t (b - a) nearest to p (0 for a point).
+double segment_parameter(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
   const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return {a + t * ab, {1.0 - t, t, 0.0}};
+  return length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+}
+
+TrianglePoint on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const double t = segment_parameter(p, a, b);
+  return {a + t * (b - a), {1.0 - t, t, 0.0}};
 }
 
 // Nearest point of the three edges, for a triangle too flat to have a face region.
@@ -38,6 +43,10 @@ double box_distance2(const Eigen::Vector3d& p, const Eigen::Vector3d& lo, const 
 }
 
 }  // namespace
+
+Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return a + segment_parameter(p, a, b) * (b - a);
+}
 
 TrianglePoint closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                         const Eigen::Vector3d& b, const Eigen::Vector3d& c) {

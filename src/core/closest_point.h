@@ -21,6 +21,9 @@ struct TrianglePoint {
   Eigen::Vector3d bary = Eigen::Vector3d::Zero();
 };
 
+/// The point of segment [a, b] nearest to `p` (a when the segment is a point).
+Eigen::Vector3d closest_point_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b);
+
 /// Exact nearest point of triangle (a, b, c) to `p` by Voronoi-region tests (Ericson,
 /// Real-Time Collision Detection, 5.1.5). A degenerate triangle gives its nearest edge point.
 TrianglePoint closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,

@@ -1,6 +1,7 @@
 #include "layout/consistent_layout.h"
 
 #include "core/anchors.h"
+#include "core/closest_point.h"
 #include "core/disjoint_sets.h"
 #include "core/errors.h"
 #include "core/provenance.h"
@@ -274,9 +275,7 @@ class LayoutBuilder {
     return [&target, fit, polyline = std::move(polyline), radius](int v) {
       const Eigen::Vector3d x = (fit * position(target, VertexHandle(v)).homogeneous()).head<3>();
       for (std::size_t k = 1; k < polyline.size(); ++k) {
-        const Eigen::Vector3d e = polyline[k] - polyline[k - 1];
-        const double t = std::clamp((x - polyline[k - 1]).dot(e) / std::max(e.squaredNorm(), 1e-300), 0.0, 1.0);
-        if ((x - polyline[k - 1] - t * e).norm() <= radius) return true;
+        if ((closest_point_on_segment(x, polyline[k - 1], polyline[k]) - x).norm() <= radius) return true;
       }
       return false;
     };

@@ -1,5 +1,7 @@
 #include "measure/plane_section.h"
 
+#include "core/closest_point.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -14,13 +16,6 @@ namespace {
 Eigen::Vector3d crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double da, double db) {
   const double t = da / (da - db);
   return a + t * (b - a);
-}
-
-double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double squared = ab.squaredNorm();
-  const double t = squared > 0.0 ? std::clamp((p - a).dot(ab) / squared, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
 }
 
 double cross_2d(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -99,7 +94,7 @@ double distance_to_loop(const SectionLoop& loop, const Eigen::Vector3d& point) {
   if (n == 1) return (loop.points.front() - point).norm();
   const std::size_t segments = loop.closed ? n : n - 1;
   for (std::size_t i = 0; i < segments; ++i)
-    best = std::min(best, segment_distance(point, loop.points[i], loop.points[(i + 1) % n]));
+    best = std::min(best, (closest_point_on_segment(point, loop.points[i], loop.points[(i + 1) % n]) - point).norm());
   return best;
 }
 

@@ -17,15 +17,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The point of segment (a, b) nearest to p.
-Eigen::Vector3d nearest_on_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                   const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double squared = ab.squaredNorm();
-  if (!(squared > 0.0)) return a;
-  return a + std::clamp((p - a).dot(ab) / squared, 0.0, 1.0) * ab;
-}
-
 // Makes surface points vertices of `mesh`, which starts as a copy of the measured surface. A
 // split keeps the split face's handle for one piece and appends the others, so a point of input
 // face f lies in f or in an appended face: those are the only candidates to look at.
@@ -54,7 +45,7 @@ class PointInserter {
     Eigen::Vector3d on_edge = q;
     double edge_distance = snap_;
     for (const HalfedgeHandle h : mesh_.fh_range(face)) {
-      const Eigen::Vector3d e = nearest_on_segment(q, position(mesh_, mesh_.from_vertex_handle(h)),
+      const Eigen::Vector3d e = closest_point_on_segment(q, position(mesh_, mesh_.from_vertex_handle(h)),
                                                    position(mesh_, mesh_.to_vertex_handle(h)));
       if ((e - q).norm() <= edge_distance) {
         edge_distance = (e - q).norm();
