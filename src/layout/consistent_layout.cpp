@@ -100,13 +100,13 @@ struct Candidate {
   }
 };
 
-// The construction: shared combinatorics (edges, rotations) plus per-side labels.
 // A tree edge's target path keeps within kCorridorRadius times the template path's length of
 // that path, once the target is brought onto the template by the similarity that best fits the
 // kCorridorFitAnchors anchors nearest the edge's two ends (LayoutBuilder::corridor).
 constexpr int kCorridorFitAnchors = 8;
 constexpr double kCorridorRadius = 0.35;
 
+// The construction: shared combinatorics (edges, rotations) plus per-side labels.
 class LayoutBuilder {
  public:
   LayoutBuilder(ConsistentLayoutResult& result, const std::vector<double>& key)

@@ -37,8 +37,8 @@ struct ConsistentLayoutSettings {
   /// Keep each tree edge's target path near the template's, once the target is brought onto the
   /// template by the similarity that best fits the anchors near the edge (LayoutBuilder::corridor
   /// in the source); when false, or when no path fits, the target's shortest path through the
-  /// same corners. With both settings false the layout is built as before session 16, which the
-  /// tests of the retries use to make the maps those retries repair.
+  /// same corners. With both settings false the tree is Kraevoy and Sheffer's greedy alone, which
+  /// the tests of the retries use to make the maps those retries repair.
   bool tree_corridor = true;
 };
 

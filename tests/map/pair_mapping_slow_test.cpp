@@ -75,7 +75,7 @@ TEST(PairMapping, UntanglingLeavesNoFlippedFaceOnTheSampleTargets) {
       EXPECT_NEAR(by_default.quality.area_ratio, 1.0, 0.02);
     }
     PairSettings paper;
-    paper.layout.unambiguous_tree_first = false;  // the layout as built before session 16,
+    paper.layout.unambiguous_tree_first = false;  // the tree as the greedy alone builds it,
     paper.layout.tree_corridor = false;           // whose map squeezes the thumb tip's ring
     paper.cross_map.relax = false;
     paper.retry_keeping_corners = false;  // one layout: a second one would hide what untangling left

@@ -23,9 +23,10 @@
 namespace xparam {
 namespace {
 
-// The layout as built before session 16 (ConsistentLayoutSettings::unambiguous_tree_first and
-// tree_corridor off): the maps it makes on these pairs fold or squeeze where the retries and the
-// tip anchors tested here repair them; the current layout leaves them nothing to repair.
+// The layout's tree as Kraevoy and Sheffer's greedy alone builds it
+// (ConsistentLayoutSettings::unambiguous_tree_first and tree_corridor off): the maps it makes on
+// these pairs fold or squeeze where the retries and the tip anchors tested here repair them; the
+// default layout leaves them nothing to repair.
 void use_the_earlier_tree(PairSettings& settings) {
   settings.layout.unambiguous_tree_first = false;
   settings.layout.tree_corridor = false;
