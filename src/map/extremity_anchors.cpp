@@ -9,6 +9,7 @@
 #include <limits>
 #include <queue>
 #include <utility>
+#include <variant>
 
 namespace xparam {
 namespace {
@@ -52,12 +53,109 @@ std::vector<VertexHandle> handles(const Mesh& mesh, const std::vector<int>& vert
   return result;
 }
 
+// How far a first map puts tips apart: a template tip's image from a target tip, plus the
+// target tip's preimage (its nearest remesh point, at the same barycentrics of the template
+// face) from the template tip, each a fraction of sqrt(area) of its mesh.
+class TipMismatch {
+ public:
+  TipMismatch(const Mesh& source, const Mesh& target, const FirstMap& map)
+      : source_(source),
+        target_(target),
+        map_(map),
+        remesh_(map.images, map.faces),
+        source_scale_(std::sqrt(surface_area(source))),
+        target_scale_(std::sqrt(surface_area(target))) {}
+
+  Eigen::Vector3d preimage(int target_vertex) const {
+    const ClosestPoint nearest = remesh_.closest(position(target_, target_.vertex_handle(target_vertex)));
+    const auto& face = map_.faces[nearest.location.face];
+    Eigen::Vector3d back = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 3; ++c) back += nearest.location.bary[c] * position(source_, source_.vertex_handle(face[c]));
+    return back;
+  }
+
+  double operator()(int source_vertex, int target_vertex, const Eigen::Vector3d& target_preimage) const {
+    const double on_target =
+        (map_.images[source_vertex] - position(target_, target_.vertex_handle(target_vertex))).norm() /
+        target_scale_;
+    const double on_source =
+        (position(source_, source_.vertex_handle(source_vertex)) - target_preimage).norm() / source_scale_;
+    return on_target + on_source;
+  }
+
+ private:
+  const Mesh& source_;
+  const Mesh& target_;
+  const FirstMap& map_;
+  ClosestPointIndex remesh_;
+  double source_scale_;
+  double target_scale_;
+};
+
+// A helper anchor on template vertex `s` and target vertex `t`, named "tip N" ("'" added while
+// the name is in `names`, which gains it).
+ExtremityAnchor tip_anchor(int s, int t, double mismatch, std::size_t n, std::vector<std::string>& names) {
+  std::string name = "tip " + std::to_string(n);
+  while (std::find(names.begin(), names.end(), name) != names.end()) name += "'";
+  names.push_back(name);
+  ExtremityAnchor anchor;
+  anchor.specs[0] = {name, AnchorVertex{s}, "", 0};
+  anchor.specs[1] = {name, AnchorVertex{t}, "", 0};
+  anchor.mismatch = mismatch;
+  return anchor;
+}
+
+// How much nearer its anchor than on the template a first map must put a tip's image for the
+// tip to be matched through the anchor's cell (match_extremities_by_cell).
+constexpr double kSqueezed = 0.5;
+
+// How long a protrusion must be, in tip reaches from its anchor, for a blob without a tip on the
+// other mesh to stand in for its tip.
+constexpr double kBlobTipReaches = 3.0;
+
+// Per anchor of one mesh: the unmatched tip in its Voronoi cell farthest from it (-1: none),
+// the cell's farthest end (Extremities::ends), and their distances from the anchor as fractions
+// of sqrt(area).
+struct FarthestInCells {
+  std::vector<int> tip;
+  std::vector<double> tip_distance;
+  std::vector<int> end;
+  std::vector<double> end_distance;
+};
+
+FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<int>& matched_tips) {
+  const AnchorVoronoi cells = anchor_voronoi(side.mesh, handles(side.mesh, side.anchors));
+  const double scale = std::sqrt(surface_area(side.mesh));
+  const std::size_t n = side.anchors.size();
+  FarthestInCells farthest{std::vector<int>(n, -1), std::vector<double>(n, 0.0), std::vector<int>(n, -1),
+                           std::vector<double>(n, 0.0)};
+  // In vertex order: ties go to the lower index.
+  for (int v : side.tips) {
+    if (std::find(matched_tips.begin(), matched_tips.end(), v) != matched_tips.end()) continue;
+    const int k = cells.cell[v];
+    const double d = cells.distance[v] / scale;
+    if (farthest.tip[k] < 0 || d > farthest.tip_distance[k]) {
+      farthest.tip[k] = v;
+      farthest.tip_distance[k] = d;
+    }
+  }
+  for (int v : side.ends) {
+    const int k = cells.cell[v];
+    const double d = cells.distance[v] / scale;
+    if (farthest.end[k] < 0 || d > farthest.end_distance[k]) {
+      farthest.end[k] = v;
+      farthest.end_distance[k] = d;
+    }
+  }
+  return farthest;
+}
+
 }  // namespace
 
-std::vector<int> protrusion_tips(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach) {
+Extremities extremities(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach) {
   const std::vector<double> from_root = anchor_voronoi(mesh, {mesh.vertex_handle(root)}).distance;
   const std::vector<double> from_anchors = anchor_voronoi(mesh, handles(mesh, anchors)).distance;
-  std::vector<int> tips;
+  Extremities found;
   for (VertexHandle v : mesh.vertices()) {
     const double here = from_root[v.idx()];
     if (from_anchors[v.idx()] <= reach) continue;
@@ -73,9 +171,11 @@ std::vector<int> protrusion_tips(const Mesh& mesh, int root, const std::vector<i
       }
       if (d >= 0.8 * reach) rim_highest = std::max(rim_highest, from_root[u]);
     }
-    if (highest && rim_highest <= here - 0.5 * reach) tips.push_back(v.idx());
+    if (!highest) continue;
+    found.ends.push_back(v.idx());
+    if (rim_highest <= here - 0.5 * reach) found.tips.push_back(v.idx());
   }
-  return tips;
+  return found;
 }
 
 std::vector<ExtremityAnchor> match_extremities(const Mesh& source, const std::vector<int>& source_tips,
@@ -84,26 +184,9 @@ std::vector<ExtremityAnchor> match_extremities(const Mesh& source, const std::ve
                                                double max_mismatch) {
   std::vector<ExtremityAnchor> matched;
   if (source_tips.empty() || target_tips.empty()) return matched;
-  const double source_scale = std::sqrt(surface_area(source));
-  const double target_scale = std::sqrt(surface_area(target));
-  // Each target tip taken back onto the template: its nearest remesh point, at the same
-  // barycentrics of the template face.
-  const ClosestPointIndex remesh(map.images, map.faces);
+  const TipMismatch mismatch(source, target, map);
   std::vector<Eigen::Vector3d> target_tip_preimage;
-  for (int t : target_tips) {
-    const ClosestPoint nearest = remesh.closest(position(target, target.vertex_handle(t)));
-    const auto& face = map.faces[nearest.location.face];
-    Eigen::Vector3d back = Eigen::Vector3d::Zero();
-    for (int c = 0; c < 3; ++c) back += nearest.location.bary[c] * position(source, source.vertex_handle(face[c]));
-    target_tip_preimage.push_back(back);
-  }
-  const auto mismatch = [&](int s, int t) {
-    const double on_target =
-        (map.images[source_tips[s]] - position(target, target.vertex_handle(target_tips[t]))).norm() / target_scale;
-    const double on_source =
-        (position(source, source.vertex_handle(source_tips[s])) - target_tip_preimage[t]).norm() / source_scale;
-    return on_target + on_source;
-  };
+  for (int t : target_tips) target_tip_preimage.push_back(mismatch.preimage(t));
   const int n_source = static_cast<int>(source_tips.size());
   const int n_target = static_cast<int>(target_tips.size());
   std::vector<int> best_target(n_source, -1);
@@ -111,7 +194,7 @@ std::vector<ExtremityAnchor> match_extremities(const Mesh& source, const std::ve
   std::vector<double> cost(static_cast<std::size_t>(n_source) * n_target);
   for (int s = 0; s < n_source; ++s) {
     for (int t = 0; t < n_target; ++t) {
-      cost[s * n_target + t] = mismatch(s, t);
+      cost[s * n_target + t] = mismatch(source_tips[s], target_tips[t], target_tip_preimage[t]);
       if (best_target[s] < 0 || cost[s * n_target + t] < cost[s * n_target + best_target[s]]) best_target[s] = t;
       if (best_source[t] < 0 || cost[s * n_target + t] < cost[best_source[t] * n_target + t]) best_source[t] = s;
     }
@@ -120,16 +203,72 @@ std::vector<ExtremityAnchor> match_extremities(const Mesh& source, const std::ve
   for (int s = 0; s < n_source; ++s) {
     const int t = best_target[s];
     if (best_source[t] != s || !(cost[s * n_target + t] < max_mismatch)) continue;
-    std::string name = "tip " + std::to_string(matched.size() + 1);
-    while (std::find(names.begin(), names.end(), name) != names.end()) name += "'";
-    names.push_back(name);
-    ExtremityAnchor anchor;
-    anchor.specs[0] = {name, AnchorVertex{source_tips[s]}, "", 0};
-    anchor.specs[1] = {name, AnchorVertex{target_tips[t]}, "", 0};
-    anchor.mismatch = cost[s * n_target + t];
-    matched.push_back(std::move(anchor));
+    matched.push_back(tip_anchor(source_tips[s], target_tips[t], cost[s * n_target + t], matched.size() + 1, names));
   }
   return matched;
+}
+
+std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& source, const TipsAndAnchors& target,
+                                                       const FirstMap& map,
+                                                       const std::vector<ExtremityAnchor>& matched,
+                                                       const std::vector<std::string>& taken) {
+  std::vector<ExtremityAnchor> by_cell;
+  if (source.tips.empty() || target.tips.empty()) return by_cell;
+  std::vector<int> matched_source, matched_target;
+  std::vector<std::string> names = taken;
+  for (const ExtremityAnchor& tip : matched) {
+    matched_source.push_back(std::get<AnchorVertex>(tip.specs[0].location).index);
+    matched_target.push_back(std::get<AnchorVertex>(tip.specs[1].location).index);
+    names.push_back(tip.specs[0].name);
+  }
+  const FarthestInCells on_source = farthest_in_cells(source, matched_source);
+  const FarthestInCells on_target = farthest_in_cells(target, matched_target);
+  const TipMismatch mismatch(source.mesh, target.mesh, map);
+  // Whether the first map squeezes template vertex s towards anchor k: its image lies nearer the
+  // anchor, relative to the target's size, than kSqueezed times the vertex itself does on the
+  // template. Elsewhere the first map has put the protrusion where it belongs and its
+  // through-map matches (or none) stand.
+  const double source_scale = std::sqrt(surface_area(source.mesh));
+  const double target_scale = std::sqrt(surface_area(target.mesh));
+  const auto squeezed = [&](int s, std::size_t k) {
+    const double from_anchor =
+        (position(source.mesh, source.mesh.vertex_handle(s)) -
+         position(source.mesh, source.mesh.vertex_handle(source.anchors[k]))).norm() / source_scale;
+    const double image_from_anchor =
+        (map.images[s] - position(target.mesh, target.mesh.vertex_handle(target.anchors[k]))).norm() / target_scale;
+    return image_from_anchor < kSqueezed * from_anchor;
+  };
+  // Whether a matched tip lies within `distance` (a fraction of sqrt(area)) of anchor k: the limb
+  // there already has a helper (the hand may span the cells of two wrist landmarks), and the
+  // farthest tips of a half-matched hand need not be the same finger on both meshes.
+  const auto near_matched = [](const TipsAndAnchors& side, const std::vector<int>& matched_tips, std::size_t k,
+                               double distance) {
+    const double scale = std::sqrt(surface_area(side.mesh));
+    const Eigen::Vector3d anchor = position(side.mesh, side.mesh.vertex_handle(side.anchors[k]));
+    return std::any_of(matched_tips.begin(), matched_tips.end(), [&](int v) {
+      return (position(side.mesh, side.mesh.vertex_handle(v)) - anchor).norm() <= distance * scale;
+    });
+  };
+  for (std::size_t k = 0; k < source.anchors.size(); ++k) {
+    if (near_matched(source, matched_source, k, std::max(on_source.tip_distance[k], on_source.end_distance[k])) ||
+        near_matched(target, matched_target, k, std::max(on_target.tip_distance[k], on_target.end_distance[k])))
+      continue;
+    if (on_source.tip[k] < 0 && on_target.tip[k] < 0) continue;
+    // A tip on one mesh only: the other's protrusion is a blob (a fist), whose farthest point
+    // from the anchor stands for the tip when the tip ends a long protrusion.
+    const auto stand_in = [&](const FarthestInCells& with, const FarthestInCells& without, double reach) {
+      return with.tip[k] >= 0 && with.tip_distance[k] >= kBlobTipReaches * reach ? without.end[k] : -1;
+    };
+    const int s = on_source.tip[k] >= 0 ? on_source.tip[k] : stand_in(on_target, on_source, target.reach);
+    const int t = on_target.tip[k] >= 0 ? on_target.tip[k] : stand_in(on_source, on_target, source.reach);
+    if (s < 0 || t < 0) continue;
+    const double ratio = (on_source.tip[k] >= 0 ? on_source.tip_distance[k] : on_source.end_distance[k]) /
+                         (on_target.tip[k] >= 0 ? on_target.tip_distance[k] : on_target.end_distance[k]);
+    if (!(ratio >= 0.5 && ratio <= 2.0) || !squeezed(s, k)) continue;
+    by_cell.push_back(
+        tip_anchor(s, t, mismatch(s, t, mismatch.preimage(t)), matched.size() + by_cell.size() + 1, names));
+  }
+  return by_cell;
 }
 
 }  // namespace xparam

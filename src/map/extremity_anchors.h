@@ -9,6 +9,10 @@
 /// first map, however folded, keeps each template tip near the target tip it belongs to, and
 /// each target tip near the template tip: a tip pair that is each other's nearest through the
 /// map in both directions becomes a helper anchor on both meshes, and the pair is mapped again.
+/// Where the first map has squeezed a whole protrusion into its root (a hand drawn into the
+/// wrist, its fingertips' images all on the wrist), no tip pair is near through it; the
+/// protrusion still lies in the Voronoi cell of the same landmark on both meshes, and its
+/// farthest tip from that landmark is matched by the cell instead (match_extremities_by_cell).
 
 #include "core/anchors.h"
 #include "core/mesh.h"
@@ -21,12 +25,19 @@
 
 namespace xparam {
 
-/// The tips of one mesh's protrusions: each vertex whose geodesic distance (along mesh edges)
-/// from `root` is the largest within `reach` of it, and exceeds that distance at every vertex
-/// `reach` away by half of `reach` (so it ends a protrusion at least that long, not a bump),
-/// and that lies farther than `reach` from every vertex of `anchors` (a tip with a landmark
-/// needs no helper). In vertex order. \pre root and anchors valid vertices of a connected mesh
-std::vector<int> protrusion_tips(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach);
+/// The ends of one mesh's limbs, by geodesic distance (along mesh edges) from `root`.
+struct Extremities {
+  /// Each vertex whose distance from root is the largest within `reach` of it and that lies
+  /// farther than `reach` from every vertex of `anchors` (an end with a landmark needs no helper).
+  /// In vertex order.
+  std::vector<int> ends;
+  /// The ends whose distance exceeds that at every vertex `reach` away by half of `reach`: they
+  /// end a protrusion at least that long (a finger, a toe), not a bump or a blob (a fist).
+  std::vector<int> tips;
+};
+
+/// The extremities of `mesh`. \pre root and anchors valid vertices of a connected mesh
+Extremities extremities(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach);
 
 /// A tip matched on both meshes.
 struct ExtremityAnchor {
@@ -41,7 +52,7 @@ struct FirstMap {
   const std::vector<std::array<int, 3>>& faces;
 };
 
-/// Template tips and target tips (protrusion_tips) that are each other's nearest through `map`
+/// Template tips and target tips (Extremities::tips) that are each other's nearest through `map`
 /// (a template tip's image to a target tip, and the target tip's nearest remesh point, taken
 /// back onto the template, to the template tip), with a mismatch below `max_mismatch`. Named
 /// "tip N" (N from 1, with "'" added while the name is among `taken`).
@@ -49,5 +60,26 @@ std::vector<ExtremityAnchor> match_extremities(const Mesh& source, const std::ve
                                                const Mesh& target, const std::vector<int>& target_tips,
                                                const FirstMap& map, const std::vector<std::string>& taken,
                                                double max_mismatch);
+
+/// One mesh's tips and its anchors' vertices, the anchors in the same order on both meshes.
+struct TipsAndAnchors {
+  const Mesh& mesh;
+  const std::vector<int>& tips;     ///< Extremities::tips
+  const std::vector<int>& ends;     ///< Extremities::ends
+  const std::vector<int>& anchors;  ///< vertex of each anchor
+  double reach = 0.0;               ///< the tips' reach, as a fraction of sqrt(area)
+};
+
+/// Tips left out by `matched`, matched through the landmark whose geodesic Voronoi cell holds
+/// them. For each anchor whose cell holds no matched tip on either mesh: the unmatched tip
+/// farthest from the anchor on each mesh; where only one mesh has a tip there and it lies over
+/// 3 reaches from the anchor, the other mesh's farthest end in the cell (a fist ends a limb
+/// without a tip's spike). Matched when the two distances from
+/// the anchor (fractions of sqrt(area)) are within a factor of 2. Mismatch as in
+/// match_extremities; names continue theirs, avoiding `taken` and `matched`'s.
+std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& source, const TipsAndAnchors& target,
+                                                       const FirstMap& map,
+                                                       const std::vector<ExtremityAnchor>& matched,
+                                                       const std::vector<std::string>& taken);
 
 }  // namespace xparam

@@ -1,5 +1,6 @@
 #include "map/extremity_anchors.h"
 
+#include "layout/anchor_voronoi.h"
 #include "layout/layout_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -23,8 +24,8 @@ Mesh spiked_octahedron() {
 // no helper.
 TEST(ProtrusionTips, AreTheEndsOfProtrusionsWithoutAnchors) {
   const Mesh mesh = spiked_octahedron();
-  EXPECT_EQ(protrusion_tips(mesh, 5, {5}, 0.5), (std::vector<int>{0, 4}));
-  EXPECT_EQ(protrusion_tips(mesh, 5, {5, 4}, 0.5), (std::vector<int>{0}));
+  EXPECT_EQ(extremities(mesh, 5, {5}, 0.5).tips, (std::vector<int>{0, 4}));
+  EXPECT_EQ(extremities(mesh, 5, {5, 4}, 0.5).tips, (std::vector<int>{0}));
 }
 
 // Through the identity map each tip is matched with itself, at no mismatch, and helper names
@@ -55,6 +56,40 @@ TEST(MatchExtremities, TheIdentityMatchesEachTipWithItself) {
   EXPECT_EQ(std::get<AnchorVertex>(crossed[0].specs[1].location).index, 4);
   EXPECT_EQ(std::get<AnchorVertex>(crossed[1].specs[0].location).index, 4);
   EXPECT_EQ(std::get<AnchorVertex>(crossed[1].specs[1].location).index, 0);
+}
+
+// A first map that draws the spike's tip into the landmark whose cell holds it (a hand squeezed
+// into the wrist): no tip pair is near through it, and the cell matches the spike's tip with
+// itself; the +z corner, which the map leaves in place, is matched through the map, not by its
+// cell.
+TEST(MatchExtremitiesByCell, MatchesTheTipOfASqueezedProtrusionThroughItsLandmark) {
+  const Mesh mesh = spiked_octahedron();
+  const std::vector<int> anchors = {5, 2};
+  const Extremities ends = extremities(mesh, 5, anchors, 0.5);
+  ASSERT_EQ(ends.tips, (std::vector<int>{0, 4}));
+  const int spike_cell = anchor_voronoi(mesh, {VertexHandle(5), VertexHandle(2)}).cell[0];
+  std::vector<Eigen::Vector3d> images;
+  for (VertexHandle v : mesh.vertices()) images.push_back(position(mesh, v));
+  images[0] = position(mesh, VertexHandle(anchors[spike_cell])) + Eigen::Vector3d(0.05, 0.0, 0.0);
+  const std::vector<std::array<int, 3>> faces = triangles_of(mesh);
+  const TipsAndAnchors side{mesh, ends.tips, ends.ends, anchors, 0.5 / std::sqrt(surface_area(mesh))};
+
+  const std::vector<ExtremityAnchor> through_map =
+      match_extremities(mesh, ends.tips, mesh, ends.tips, {images, faces}, {}, 0.1);
+  ASSERT_EQ(through_map.size(), 1u);
+  EXPECT_EQ(std::get<AnchorVertex>(through_map[0].specs[0].location).index, 4);
+  const std::vector<ExtremityAnchor> by_cell = match_extremities_by_cell(side, side, {images, faces}, {}, {"tip 1"});
+  ASSERT_EQ(by_cell.size(), 1u);
+  EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[0].location).index, 0);
+  EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[1].location).index, 0);
+  EXPECT_EQ(by_cell[0].specs[0].name, "tip 1'");
+  EXPECT_GT(by_cell[0].mismatch, 0.1);
+
+  // A matched tip nearer the landmark than the spike's tip (the octahedron is small beside its
+  // spike) says the limb has its helper already; through the identity nothing is squeezed.
+  EXPECT_TRUE(match_extremities_by_cell(side, side, {images, faces}, through_map, {}).empty());
+  for (VertexHandle v : mesh.vertices()) images[v.idx()] = position(mesh, v);
+  EXPECT_TRUE(match_extremities_by_cell(side, side, {images, faces}, {}, {}).empty());
 }
 
 }  // namespace
