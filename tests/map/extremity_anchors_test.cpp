@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <variant>
 
 namespace xparam {
@@ -90,6 +91,32 @@ TEST(MatchExtremitiesByCell, MatchesTheTipOfASqueezedProtrusionThroughItsLandmar
   EXPECT_TRUE(match_extremities_by_cell(side, side, {images, faces}, through_map, {}).empty());
   for (VertexHandle v : mesh.vertices()) images[v.idx()] = position(mesh, v);
   EXPECT_TRUE(match_extremities_by_cell(side, side, {images, faces}, {}, {}).empty());
+}
+
+// Where the target's limb ends in a blob (an end without a tip: a fist), the cell's farthest end
+// stands in for the tip of the template's squeezed spike; without the end, nothing is matched.
+TEST(MatchExtremitiesByCell, ABlobsEndStandsInForATip) {
+  const Mesh mesh = spiked_octahedron();
+  const std::vector<int> anchors = {5, 2};
+  const Extremities ends = extremities(mesh, 5, anchors, 0.5);
+  ASSERT_EQ(ends.tips, (std::vector<int>{0, 4}));
+  const int spike_cell = anchor_voronoi(mesh, {VertexHandle(5), VertexHandle(2)}).cell[0];
+  std::vector<Eigen::Vector3d> images;
+  for (VertexHandle v : mesh.vertices()) images.push_back(position(mesh, v));
+  images[0] = position(mesh, VertexHandle(anchors[spike_cell])) + Eigen::Vector3d(0.05, 0.0, 0.0);
+  const std::vector<std::array<int, 3>> faces = triangles_of(mesh);
+  const double reach = 0.5 / std::sqrt(surface_area(mesh));
+  const TipsAndAnchors spiked{mesh, ends.tips, ends.ends, anchors, reach};
+  const std::vector<int> blob_tips = {4};  // the spike's end seen as a blob's: an end, no tip
+  const TipsAndAnchors blob{mesh, blob_tips, ends.ends, anchors, reach};
+  const std::vector<ExtremityAnchor> by_cell = match_extremities_by_cell(spiked, blob, {images, faces}, {}, {});
+  ASSERT_EQ(by_cell.size(), 1u);
+  EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[0].location).index, 0);
+  EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[1].location).index, 0);
+
+  const std::vector<int> no_end = {4};
+  const TipsAndAnchors bare{mesh, blob_tips, no_end, anchors, reach};
+  EXPECT_TRUE(match_extremities_by_cell(spiked, bare, {images, faces}, {}, {}).empty());
 }
 
 }  // namespace
