@@ -175,6 +175,26 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
   return options.dump();
 }
 
+IntakeSettings recorded_intake(const std::string& options_json) {
+  IntakeSettings intake;
+  const nlohmann::json options = nlohmann::json::parse(options_json, nullptr, false);
+  if (options.is_discarded() || !options.is_object() || !options.contains("intake")) {
+    intake.mode = IntakeMode::Strict;
+    return intake;
+  }
+  try {
+    const nlohmann::json& recorded = options.at("intake");
+    intake.mode = recorded.at("mode").get<std::string>() == "strict" ? IntakeMode::Strict : IntakeMode::Repair;
+    intake.max_dropped_area = recorded.at("max_dropped_area").get<double>();
+    intake.max_hole = recorded.at("max_hole").get<double>();
+    intake.max_hole_relative = recorded.at("max_hole_relative").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    throw ArchiveError("the recorded options' \"intake\" is not as xparam batch writes it (" + std::string(e.what()) +
+                       "): " + options_json);
+  }
+  return intake;
+}
+
 BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, const BatchSettings& settings,
                        const BatchProgressCallback& progress, const TargetStageCallback& on_stage) {
   const Clock::time_point start = Clock::now();

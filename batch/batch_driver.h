@@ -121,6 +121,11 @@ struct BatchSummary {
 std::string batch_options_json(const PairSettings& settings, const QualityLimits& limits = {},
                                const IntakeSettings& intake = {});
 
+/// The scan intake's settings back from batch_options_json's object (a target's recorded
+/// options); IntakeMode::Strict when it has no "intake" (archives from before the intake loaded
+/// every target as it was). \throw ArchiveError when "intake" is there but not as written
+IntakeSettings recorded_intake(const std::string& options_json);
+
 /// Run `plan` against `prepared`: create (or, with settings.resume, continue) the archive,
 /// run every target whose action is Run, commit each as it finishes, checkpoint, and assemble
 /// the final archive. Once settings.stop is raised, no further target starts (see there).

@@ -45,6 +45,15 @@ std::vector<int> anchor_file_vertices(const PreparedTemplate& prepared, const Pl
   return vertices;
 }
 
+// The template's positions of its file vertices (the copies of split pinched vertices have no row
+// of their own).
+Eigen::MatrixX3d file_vertex_positions(const LoadedMesh& loaded) {
+  Eigen::MatrixX3d rows(loaded.file_order.file_vertices, 3);
+  for (int v = 0; v < loaded.file_order.file_vertices; ++v)
+    rows.row(v) = position(loaded.mesh, VertexHandle(v)).transpose();
+  return rows;
+}
+
 // The template's feature curves traced on its own faces (the identity carries every curve point
 // onto itself), as map_pair traces their images on a target: their lengths are the template's
 // curve_length values.
@@ -72,9 +81,7 @@ TemplateRecord make_record(const TemplateInputs& inputs, const PreparedTemplate&
     record.curves_sha256 = sha256_file_hex(inputs.curves);
   }
 
-  // The file's vertices only: the copies of split pinched vertices have no row of their own.
-  record.vertices.resize(order.file_vertices, 3);
-  for (int v = 0; v < order.file_vertices; ++v) record.vertices.row(v) = position(mesh, VertexHandle(v)).transpose();
+  record.vertices = file_vertex_positions(prepared.loaded);
   record.faces.resize(static_cast<Eigen::Index>(mesh.n_faces()), 3);
   for (FaceHandle f : mesh.faces()) {
     const std::array<int, 3> corners = file_triangle(mesh, order, f);
@@ -133,7 +140,7 @@ PreparedTemplate prepare_template(const TemplateInputs& inputs) {
     prepared.curves = validate_curves(curves_in_mesh_order(read_curves(inputs.curves), order), prepared.loaded.mesh);
   if (!inputs.measurements.empty()) {
     // Points name the anchors as placed on the template (file vertices) or file vertices.
-    MeasurementTemplate on{{}, anchor_file_vertices(prepared, placed), order.file_vertices};
+    MeasurementTemplate on{{}, anchor_file_vertices(prepared, placed), file_vertex_positions(prepared.loaded)};
     for (const PlacedAnchor& anchor : placed.anchors) on.anchor_names.push_back(anchor.name);
     for (const FeatureCurve& curve : prepared.curves) on.curve_names.push_back(curve.name);
     prepared.measurements = read_measurements(inputs.measurements, on);

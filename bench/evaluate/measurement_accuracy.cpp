@@ -84,7 +84,7 @@ int main(int argc, char** argv) try {
 
   const LoadedMesh smpl = load_mesh(source / "tests/data/human_man.obj");
   const AnchorSet template_anchors = template_landmarks(landmarks, source, data);
-  MeasurementTemplate on{{}, {}, static_cast<int>(smpl.mesh.n_vertices())};
+  MeasurementTemplate on{{}, {}, vertex_rows(smpl.mesh)};
   for (const AnchorSpec& a : template_anchors.anchors) {
     on.anchor_names.push_back(a.name);
     on.anchor_vertices.push_back(std::get<AnchorVertex>(a.location).index);

@@ -4,6 +4,7 @@
 #include "cli/commands.h"
 #include "cli/text_format.h"
 #include "cli/unknown_target.h"
+#include "cli/warp_bodies.h"
 #include "cli/warp_report.h"
 
 #include "core/errors.h"
@@ -26,6 +27,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -43,6 +45,7 @@ struct WarpOptions {
   std::vector<std::string> targets;  ///< --target; empty: every target of the archive
   std::string out;                   ///< a folder, or a file ending in .h5
   std::string summary;               ///< --summary; default DIR/summary.json in folder mode
+  std::string targets_folder;        ///< --targets: where moved target files are looked for by name
   std::optional<double> clearance;   ///< --clearance E
   std::string frame = "gradient";    ///< --frame
   int threads = tbb::info::default_concurrency();
@@ -167,7 +170,8 @@ nlohmann::ordered_json options_json(const WarpOptions& options, const WarpSettin
 }
 
 WarpArchiveRecord warp_record(const WarpOptions& options, const std::string& settings_json, const GarmentObj& garment,
-                              const GarmentBinding& binding, const std::vector<WarpedGarment>& warped) {
+                              const GarmentBinding& binding, const std::vector<WarpedGarment>& warped,
+                              const std::map<std::string, WarpBody>& bodies) {
   WarpArchiveRecord record;
   record.archive_file = options.archive;
   record.garment_file = options.garment;
@@ -187,6 +191,8 @@ WarpArchiveRecord warp_record(const WarpOptions& options, const std::string& set
     record.target_names.push_back(g.name);
     record.target_errors.push_back(g.error);
     const bool ok = g.error.empty();
+    record.target_bodies.push_back(ok ? (g.against_surface ? "surface" : "remesh") : "");
+    record.target_body_notes.push_back(ok ? body_note(bodies.at(g.name)) : "");
     record.warped_vertices.push_back(ok ? g.vertices : std::vector<Eigen::Vector3d>(n, nan_point));
     std::vector<double> moves(n, ok ? 0.0 : std::numeric_limits<double>::quiet_NaN());
     if (ok && g.clearance) moves = g.clearance->displacement;
@@ -223,15 +229,27 @@ int run_warp(const WarpOptions& options) {
   check_rest_garment(garment.mesh);
   const TriangleSoup body_template = template_soup(*reader);
   std::vector<WarpedGarment> unmapped;
-  const std::vector<WarpTarget> images = read_images(*reader, body_template, rows, unmapped);
+  std::vector<WarpTarget> images = read_images(*reader, body_template, rows, unmapped);
   for (const WarpedGarment& g : unmapped) std::cerr << "xparam warp: " << g.name << ": " << g.error << "\n";
 
   tbb::task_arena arena(options.threads);
   GarmentBinding binding;
   std::vector<WarpedGarment> warped;
+  std::map<std::string, WarpBody> bodies;
   std::mutex print;
   std::size_t done = 0;
   arena.execute([&] {
+    const std::vector<WarpBody> found = attach_surfaces(*reader, images, options.targets_folder);
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      bodies[images[i].name] = found[i];
+      if (found[i].surface_file.empty())
+        std::cerr << "xparam warp: warning: " << images[i].name
+                  << ": penetration and clearance measured against its remesh, not its own surface: "
+                  << found[i].fallback
+                  << (options.targets_folder.empty() ? " (give --targets DIR, the folder now holding the batch's target files)"
+                                                     : "")
+                  << "\n";
+    }
     binding = bind_garment(body_template, garment.mesh.vertices, bind);
     if (!options.quiet)
       std::cerr << "bound " << garment.mesh.vertices.size() << " garment vertices to the template (farthest "
@@ -257,7 +275,7 @@ int run_warp(const WarpOptions& options) {
   summary["options"] = settings_json;
   summary["targets"] = nlohmann::ordered_json::array();
   try {
-    if (to_h5) write_warp_archive(options.out, warp_record(options, settings_json.dump(), garment, binding, warped));
+    if (to_h5) write_warp_archive(options.out, warp_record(options, settings_json.dump(), garment, binding, warped, bodies));
     else fs::create_directories(options.out);
     for (const WarpedGarment& g : warped) {
       std::string obj;
@@ -265,7 +283,7 @@ int run_warp(const WarpOptions& options) {
         obj = (fs::path(options.out) / (g.name + ".obj")).string();
         write_garment_obj(obj, garment, g.vertices);
       }
-      summary["targets"].push_back(warp_target_json(g, obj));
+      summary["targets"].push_back(warp_target_json(g, obj, g.error.empty() ? bodies.at(g.name) : WarpBody{}));
     }
     if (!resolved.summary.empty()) write_text_atomically(resolved.summary, summary.dump(2) + "\n");
   } catch (const Error& e) {
@@ -299,6 +317,11 @@ void add_warp_command(CLI::App& app) {
                    "HDF5 file, schemas/warp_archive.md)")
       ->required();
   warp->add_option("--summary", options->summary, "Summary JSON (default in folder mode: OUT/summary.json)");
+  warp->add_option("--targets", options->targets_folder,
+                   "Folder holding the batch's target mesh and anchor files, looked in by file name when one is not "
+                   "where the archive recorded it (moved); penetration and clearance are measured against a target's "
+                   "own surface when its files are found unchanged, else against its remesh")
+      ->check(CLI::ExistingDirectory);
   warp->add_option("--clearance", options->clearance,
                    "Push garment vertices inside the body or closer than E to it out to E, body units (e.g. 0.002 "
                    "for 2 mm on metres)")

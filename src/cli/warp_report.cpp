@@ -50,7 +50,8 @@ std::vector<double> warp_figures(const WarpedGarment& g) {
 std::string warp_progress_line(std::size_t done, std::size_t total, const WarpedGarment& g) {
   std::string line = "[" + std::to_string(done) + "/" + std::to_string(total) + "] ";
   if (!g.error.empty()) return line + "failed " + g.name + ": " + g.error;
-  line += "warped " + g.name + "  inside " + std::to_string(g.placed_penetration.count);
+  line += "warped " + g.name + "  inside " + std::string(g.against_surface ? "its surface " : "its remesh ") +
+          std::to_string(g.placed_penetration.count);
   if (g.clearance) {
     line += " -> " + std::to_string(g.penetration.count) + "  pushed " + std::to_string(g.clearance->pushed) +
             " (max " + figure(g.clearance->max_move) + ")";
@@ -66,6 +67,7 @@ void print_warp_table(const std::vector<WarpedGarment>& garments, std::ostream& 
   for (const WarpedGarment& g : garments) name_width = std::max(name_width, g.name.size() + 2);
   const int w = static_cast<int>(name_width);
   cell("target", w);
+  cell("body", 9);
   cell("inside", 14);
   cell("max depth", 11);
   cell("pushed", 8);
@@ -79,6 +81,7 @@ void print_warp_table(const std::vector<WarpedGarment>& garments, std::ostream& 
       out << "failed: " << g.error << "\n";
       continue;
     }
+    cell(g.against_surface ? "surface" : "remesh", 9);
     cell(std::to_string(g.placed_penetration.count) + " -> " + std::to_string(g.penetration.count), 14);
     cell(figure(g.placed_penetration.max_depth), 11);
     cell(g.clearance ? std::to_string(g.clearance->pushed) : "-", 8);
@@ -91,12 +94,19 @@ void print_warp_table(const std::vector<WarpedGarment>& garments, std::ostream& 
   }
 }
 
-nlohmann::ordered_json warp_target_json(const WarpedGarment& g, const std::string& obj_file) {
+std::string body_note(const WarpBody& body) {
+  return body.surface_file.empty() ? body.fallback : body.surface_file;
+}
+
+nlohmann::ordered_json warp_target_json(const WarpedGarment& g, const std::string& obj_file, const WarpBody& body) {
   nlohmann::ordered_json target;
   target["name"] = g.name;
   target["status"] = g.error.empty() ? "warped" : "failed";
   target["error"] = g.error;
   target["obj"] = obj_file.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(obj_file);
+  const bool warped = g.error.empty();
+  target["body"] = warped ? nlohmann::ordered_json(g.against_surface ? "surface" : "remesh") : nlohmann::ordered_json();
+  target["body_note"] = warped ? nlohmann::ordered_json(body_note(body)) : nlohmann::ordered_json();
   nlohmann::ordered_json figures;
   const std::vector<double> values = warp_figures(g);
   for (std::size_t k = 0; k < values.size(); ++k) {

@@ -4,6 +4,7 @@
 /// summary JSON, the printed table and the warp file's `figures` columns), the progress line
 /// of a finished target, and the table.
 
+#include "cli/warp_bodies.h"
 #include "warp/garment_warp.h"
 
 #include <nlohmann/json.hpp>
@@ -27,7 +28,11 @@ std::string warp_progress_line(std::size_t done, std::size_t total, const Warped
 /// The table of every target's figures, for a person (3 significant digits).
 void print_warp_table(const std::vector<WarpedGarment>& garments, std::ostream& out);
 
-/// One target as a JSON object: name, status (`warped` or `failed`), error, obj file, figures.
-nlohmann::ordered_json warp_target_json(const WarpedGarment& garment, const std::string& obj_file);
+/// What the reports say about the body: the surface file measured against, or why the remesh was.
+std::string body_note(const WarpBody& body);
+
+/// One target as a JSON object: name, status (`warped` or `failed`), error, obj file, the body
+/// (`surface` or `remesh`, null when not warped) and its note, figures.
+nlohmann::ordered_json warp_target_json(const WarpedGarment& garment, const std::string& obj_file, const WarpBody& body);
 
 }  // namespace xparam::cli

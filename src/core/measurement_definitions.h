@@ -40,8 +40,8 @@ struct PlaneRule {
   /// the fixed `normal` instead.
   int normal_from = -1;
   int normal_to = -1;  ///< see normal_from
-  /// With one `through` point and no normal_from/normal_to: a fixed normal in the surface's
-  /// coordinates (e.g. the up axis of bodies that stand in the template's frame). Unit length.
+  /// With one `through` point and no normal_from/normal_to: a fixed normal in the template's
+  /// coordinates (e.g. its up axis), turned onto a target by the set's frame. Unit length.
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
 };
 
@@ -54,8 +54,19 @@ struct MeasurementDefinition {
   int near = -1;          ///< PlaneGirth: the section loop nearest this template vertex is measured
   std::vector<int> points;  ///< Straight, Geodesic: the path's vertices (>= 2); Height: the one point
   bool closed = false;      ///< Straight, Geodesic: the last point joins the first
-  Eigen::Vector3d up = Eigen::Vector3d::Zero();  ///< Height: the up direction, unit length
+  /// Height: the up direction in the template's coordinates (turned like a fixed normal), unit length
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();
   int curve = -1;  ///< CurveLength: the template's feature curve, its index in the curve file
+};
+
+/// The points that carry the set's fixed directions (a plane's `normal`, a height's `up`, given in
+/// the template's coordinates) onto a surface: on a target, the rotation that best fits the images
+/// of these points to their template positions turns every fixed direction
+/// (measure/measurement_frame.h), so a body turned or moved in space measures as the template's
+/// frame would measure it upright.
+struct MeasurementFrame {
+  std::vector<int> vertices;         ///< template vertices (file numbering); empty: directions taken as given
+  Eigen::MatrixX3d template_points;  ///< #vertices x 3: where they lie on the template
 };
 
 /// A measurement file as read and resolved against a template.
@@ -64,6 +75,7 @@ struct MeasurementSet {
   /// The length unit of the template's coordinates (e.g. "m"); every value is in it.
   std::string unit;
   std::vector<MeasurementDefinition> measurements;  ///< in file order
+  MeasurementFrame frame;  ///< how fixed directions follow a target's pose; empty: not at all
 };
 
 }  // namespace xparam

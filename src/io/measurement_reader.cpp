@@ -4,6 +4,8 @@
 #include "io/anchor_reader.h"
 
 
+#include <Eigen/SVD>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -32,12 +34,12 @@ class MeasurementJsonReader {
   MeasurementSet read() {
     const Json& root = doc_.value;
     if (!root.is_object()) fail(doc_.line(""), "expected a JSON object with \"unit\" and \"measurements\"");
-    only_members(root, {"$schema", "description", "unit", "landmarks", "measurements"}, doc_.line(""), "");
+    only_members(root, {"$schema", "description", "unit", "landmarks", "frame", "measurements"}, doc_.line(""), "");
     for (const char* text : {"$schema", "description"})
       if (root.contains(text) && !root[text].is_string()) fail(line_of(text), std::string("\"") + text + "\" must be a string");
     if (!root.contains("unit") || !root["unit"].is_string() || root["unit"].get<std::string>().empty())
       fail(doc_.line(""), "expected \"unit\": the length unit of the template's coordinates, e.g. \"m\"");
-    MeasurementSet set{source_, root["unit"].get<std::string>(), {}};
+    MeasurementSet set{source_, root["unit"].get<std::string>(), {}, {}};
     if (root.contains("landmarks")) read_landmarks(root["landmarks"]);
     if (!root.contains("measurements") || !root["measurements"].is_array() || root["measurements"].empty())
       fail(doc_.line(""), "expected a non-empty \"measurements\" array");
@@ -49,6 +51,7 @@ class MeasurementJsonReader {
         fail(doc_.line("/measurements/" + std::to_string(i)), "measurement \"" + m.name + "\" is defined twice");
       set.measurements.push_back(std::move(m));
     }
+    set.frame = frame(root, set.measurements);
     return set;
   }
 
@@ -146,6 +149,39 @@ class MeasurementJsonReader {
     m.near = entry.contains("near") ? point(entry["near"], line, what + "\"near\": ") : plane.through.front();
   }
 
+  // The points whose images turn the fixed directions onto a target: "frame", else the template's
+  // anchors. Checked only when some measurement has a fixed direction (a normal, an up).
+  MeasurementFrame frame(const Json& root, const std::vector<MeasurementDefinition>& measurements) const {
+    MeasurementFrame out;
+    const bool given = root.contains("frame");
+    const int line = given ? line_of("frame") : doc_.line("");
+    out.vertices = given ? points(root, "frame", line, "") : on_.anchor_vertices;
+    std::sort(out.vertices.begin(), out.vertices.end());
+    out.vertices.erase(std::unique(out.vertices.begin(), out.vertices.end()), out.vertices.end());
+    out.template_points.resize(static_cast<Eigen::Index>(out.vertices.size()), 3);
+    for (std::size_t i = 0; i < out.vertices.size(); ++i)
+      out.template_points.row(static_cast<Eigen::Index>(i)) = on_.vertices.row(out.vertices[i]);
+    const auto fixed = std::find_if(measurements.begin(), measurements.end(), [](const MeasurementDefinition& m) {
+      return m.kind == MeasurementKind::Height ||
+             (m.kind == MeasurementKind::PlaneGirth && m.plane.through.size() == 1 && m.plane.normal_from < 0);
+    });
+    if (fixed != measurements.end() && !fixes_a_rotation(out.template_points)) {
+      fail(line, std::string(given ? "\"frame\"" : "the template's anchors (the default \"frame\")") +
+                     " must hold at least 3 points not on one line: measurement \"" + fixed->name +
+                     "\" has a fixed direction, which a target's frame turns by the rotation these points' "
+                     "images fix; name such points in \"frame\", e.g. both shoulders and the crotch");
+    }
+    return out;
+  }
+
+  // Whether `points` fix a rotation: 3 or more, the second largest spread at least 1e-6 of the largest.
+  static bool fixes_a_rotation(const Eigen::MatrixX3d& points) {
+    if (points.rows() < 3) return false;
+    const Eigen::MatrixX3d centred = points.rowwise() - points.colwise().mean();
+    const Eigen::Vector3d spread = Eigen::JacobiSVD<Eigen::MatrixX3d>(centred).singularValues();
+    return spread[0] > 0.0 && spread[1] >= 1e-6 * spread[0];
+  }
+
   // The index of the template curve a curve_length names.
   int curve(const Json& entry, int line, const std::string& what) const {
     if (!entry.contains("curve") || !entry["curve"].is_string())
@@ -191,9 +227,9 @@ class MeasurementJsonReader {
   int vertex(const Json& value, int line, const std::string& what) const {
     if (value.is_number()) {
       const double number = value.get<double>();
-      if (std::floor(number) == number && number >= 0 && number < on_.n_vertices) return static_cast<int>(number);
+      if (std::floor(number) == number && number >= 0 && number < on_.vertices.rows()) return static_cast<int>(number);
     }
-    fail(line, what + "expected a template vertex index in [0, " + std::to_string(on_.n_vertices) + "), got " +
+    fail(line, what + "expected a template vertex index in [0, " + std::to_string(on_.vertices.rows()) + "), got " +
                    value.dump());
   }
 

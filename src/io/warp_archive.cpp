@@ -59,6 +59,8 @@ void write_targets(hid_t file, const WarpArchiveRecord& r) {
   const hsize_t g = r.rest_vertices.size();
   h5::write_strings(group.get(), "name", r.target_names);
   h5::write_strings(group.get(), "error", r.target_errors);
+  h5::write_strings(group.get(), "body", r.target_bodies);
+  h5::write_strings(group.get(), "body_note", r.target_body_notes);
   std::vector<double> vertices, moves, figures;
   for (std::size_t i = 0; i < n; ++i) {
     const std::vector<double> rows = flat(r.warped_vertices[i]);
@@ -66,7 +68,8 @@ void write_targets(hid_t file, const WarpArchiveRecord& r) {
     moves.insert(moves.end(), r.clearance_moves[i].begin(), r.clearance_moves[i].end());
     figures.insert(figures.end(), r.figures[i].begin(), r.figures[i].end());
   }
-  XP_ASSERT(vertices.size() == n * g * 3 && moves.size() == n * g && figures.size() == n * r.figure_names.size());
+  XP_ASSERT(vertices.size() == n * g * 3 && moves.size() == n * g && figures.size() == n * r.figure_names.size() &&
+            r.target_bodies.size() == n && r.target_body_notes.size() == n);
   write_table<double>(group.get(), "vertices", {n, g, 3}, vertices, 1);
   write_table<double>(group.get(), "clearance_moves", {n, g}, moves, 1);
   h5::Handle figures_set = h5::create_dataset<double>(group.get(), "figures", {n, r.figure_names.size()},

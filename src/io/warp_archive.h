@@ -15,7 +15,7 @@
 namespace xparam {
 
 /// Version of schemas/warp_archive.md, stored as the root attribute `schema_version`.
-inline constexpr int kWarpArchiveSchemaVersion = 1;
+inline constexpr int kWarpArchiveSchemaVersion = 2;  // 2: the body of each target (body, body_note)
 
 /// Everything a warp file holds, as plain arrays.
 struct WarpArchiveRecord {
@@ -32,6 +32,10 @@ struct WarpArchiveRecord {
   std::vector<Eigen::Vector3d> bound_offset;      ///< #G offset in the frame's coordinates
   std::vector<std::string> target_names;          ///< #N target names, the archive's order
   std::vector<std::string> target_errors;         ///< #N why a target was not warped; empty when it was
+  /// #N what penetration and clearance were measured against: "surface" (the target's own mesh
+  /// file) or "remesh"; empty when not warped
+  std::vector<std::string> target_bodies;
+  std::vector<std::string> target_body_notes;     ///< #N the surface's file, or why the remesh was used
   /// #N x #G warped positions per target (NaN rows for a target not warped)
   std::vector<std::vector<Eigen::Vector3d>> warped_vertices;
   /// #N x #G how far the clearance moved each vertex (zeros without --clearance, NaN when not warped)

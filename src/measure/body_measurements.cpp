@@ -1,6 +1,7 @@
 #include "measure/body_measurements.h"
 
 #include "core/errors.h"
+#include "measure/measurement_frame.h"
 #include "measure/plane_section.h"
 #include "measure/surface_geodesic.h"
 
@@ -23,9 +24,10 @@ Eigen::Vector3d point_of(const Eigen::MatrixX3d& vertex_points, int vertex) {
 
 // The plane's origin and unit normal; nothing when its points do not define one.
 std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> plane_of(const PlaneRule& rule,
-                                                                    const Eigen::MatrixX3d& vertex_points) {
+                                                                    const Eigen::MatrixX3d& vertex_points,
+                                                                    const Eigen::Matrix3d& frame) {
   const Eigen::Vector3d origin = point_of(vertex_points, rule.through.front());
-  Eigen::Vector3d normal = rule.normal;
+  Eigen::Vector3d normal = frame * rule.normal;
   if (rule.through.size() == 3) {
     normal = (point_of(vertex_points, rule.through[1]) - origin).cross(point_of(vertex_points, rule.through[2]) - origin);
   } else if (rule.normal_from >= 0) {
@@ -35,8 +37,9 @@ std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> plane_of(const PlaneR
   return std::make_pair(origin, normal.normalized());
 }
 
-double plane_girth(const MeasurementDefinition& m, const Mesh& surface, const Eigen::MatrixX3d& vertex_points) {
-  const auto plane = plane_of(m.plane, vertex_points);
+double plane_girth(const MeasurementDefinition& m, const Mesh& surface, const Eigen::MatrixX3d& vertex_points,
+                   const Eigen::Matrix3d& frame) {
+  const auto plane = plane_of(m.plane, vertex_points, frame);
   if (!plane) return kNaN;
   const std::vector<SectionLoop> loops = plane_section(surface, plane->first, plane->second);
   if (loops.empty()) return kNaN;
@@ -64,25 +67,28 @@ double geodesic(const MeasurementDefinition& m, const Mesh& surface, const Eigen
 }
 
 // Above the floor: the lowest surface vertex along `up`.
-double height(const MeasurementDefinition& m, const Mesh& surface, const Eigen::MatrixX3d& vertex_points) {
+double height(const MeasurementDefinition& m, const Mesh& surface, const Eigen::MatrixX3d& vertex_points,
+              const Eigen::Matrix3d& frame) {
+  const Eigen::Vector3d up = frame * m.up;
   double floor = std::numeric_limits<double>::infinity();
-  for (const VertexHandle v : surface.vertices()) floor = std::min(floor, m.up.dot(position(surface, v)));
-  return m.up.dot(point_of(vertex_points, m.points.front())) - floor;
+  for (const VertexHandle v : surface.vertices()) floor = std::min(floor, up.dot(position(surface, v)));
+  return up.dot(point_of(vertex_points, m.points.front())) - floor;
 }
 
 }  // namespace
 
 double measure_one(const MeasurementDefinition& measurement, const Mesh& surface,
-                   const Eigen::MatrixX3d& vertex_points, const std::vector<double>& curve_lengths) {
+                   const Eigen::MatrixX3d& vertex_points, const std::vector<double>& curve_lengths,
+                   const Eigen::Matrix3d& frame) {
   switch (measurement.kind) {
     case MeasurementKind::PlaneGirth:
-      return plane_girth(measurement, surface, vertex_points);
+      return plane_girth(measurement, surface, vertex_points, frame);
     case MeasurementKind::Straight:
       return straight(measurement, vertex_points);
     case MeasurementKind::Geodesic:
       return geodesic(measurement, surface, vertex_points);
     case MeasurementKind::Height:
-      return height(measurement, surface, vertex_points);
+      return height(measurement, surface, vertex_points, frame);
     case MeasurementKind::CurveLength:
       XP_ASSERT(measurement.curve >= 0 && static_cast<std::size_t>(measurement.curve) < curve_lengths.size());
       return curve_lengths[static_cast<std::size_t>(measurement.curve)];
@@ -94,10 +100,11 @@ double measure_one(const MeasurementDefinition& measurement, const Mesh& surface
 std::vector<double> measure_surface(const MeasurementSet& set, const Mesh& surface,
                                     const Eigen::MatrixX3d& vertex_points,
                                     const std::vector<double>& curve_lengths) {
+  const Eigen::Matrix3d frame = frame_rotation(set.frame, vertex_points);
   std::vector<double> values;
   values.reserve(set.measurements.size());
   for (const MeasurementDefinition& m : set.measurements)
-    values.push_back(measure_one(m, surface, vertex_points, curve_lengths));
+    values.push_back(measure_one(m, surface, vertex_points, curve_lengths, frame));
   return values;
 }
 

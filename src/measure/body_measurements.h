@@ -5,7 +5,8 @@
 /// Girths are plane sections of the surface measured (measure/plane_section.h), so a target's
 /// girth is its own surface's, cut by the plane through the images of the template's points;
 /// geodesic lengths are shortest paths on the surface between those images
-/// (measure/surface_geodesic.h).
+/// (measure/surface_geodesic.h). Fixed directions (a horizontal plane's normal, a height's up)
+/// are the template's, turned onto the surface by the set's frame (measure/measurement_frame.h).
 
 #include "core/measurement_definitions.h"
 #include "core/mesh.h"
@@ -32,7 +33,10 @@ std::vector<double> measure_surface(const MeasurementSet& set, const Mesh& surfa
                                     const std::vector<double>& curve_lengths = {});
 
 /// One measurement of measure_surface.
+/// \param frame the rotation taking the template's directions onto `surface` (frame_rotation of
+///        the set's frame); the identity takes fixed directions as given
 double measure_one(const MeasurementDefinition& measurement, const Mesh& surface,
-                   const Eigen::MatrixX3d& vertex_points, const std::vector<double>& curve_lengths = {});
+                   const Eigen::MatrixX3d& vertex_points, const std::vector<double>& curve_lengths = {},
+                   const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
 
 }  // namespace xparam

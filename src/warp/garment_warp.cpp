@@ -19,7 +19,8 @@ WarpedGarment warp_garment(const TriangleSoup& garment, const GarmentBinding& bi
                        "; it is not an image of the template the garment was bound to");
   }
   result.vertices = place_garment(binding, target.body);
-  const BodyDistance body(target.body);
+  result.against_surface = target.surface.has_value();
+  const BodyDistance body(target.surface ? *target.surface : target.body);
   result.placed_penetration = penetration(result.vertices, body);
   if (settings.clearance) result.clearance = apply_clearance(result.vertices, garment.triangles, body, *settings.clearance);
   result.penetration = settings.clearance ? penetration(result.vertices, body) : result.placed_penetration;

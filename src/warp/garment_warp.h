@@ -25,16 +25,21 @@ struct WarpSettings {
 };
 
 /// One target's image of the template: the template's triangles on the target's positions
-/// (the archive's remesh); it is also the body the garment must stay out of.
+/// (the archive's remesh), where the garment is placed; and the body the garment must stay out of.
 struct WarpTarget {
   std::string name;   ///< target name
   TriangleSoup body;  ///< the image: closed, outward-oriented, the template's triangles
+  /// The target's own surface (as the batch loaded it: closed, outward-oriented), against which
+  /// penetration and clearance are measured; none: against `body`, whose chords cut inside a curved
+  /// surface (a sagitta), so a garment vertex just inside the surface can lie outside them.
+  std::optional<TriangleSoup> surface = std::nullopt;
 };
 
 /// The garment on one target.
 struct WarpedGarment {
   std::string name;                       ///< target name
   std::string error;                      ///< what went wrong; empty when warped
+  bool against_surface = false;           ///< penetration and clearance measured on the target's own surface
   std::vector<Eigen::Vector3d> vertices;  ///< #G warped positions, garment vertex order
   Penetration placed_penetration;         ///< inside the body as placed, before the clearance
   Penetration penetration;                ///< inside the body at the end
@@ -42,7 +47,8 @@ struct WarpedGarment {
   ShapeChange change;                     ///< edge ratios and stretch against the rest garment
 };
 
-/// Warp `garment` (its rest positions and triangles), bound by `binding`, onto one target.
+/// Warp `garment` (its rest positions and triangles), bound by `binding`, onto one target: placed
+/// on its image, kept out of (and measured against) its surface when given, else its image.
 /// \throw Error from the stages (e.g. an image whose triangles differ from the template's)
 WarpedGarment warp_garment(const TriangleSoup& garment, const GarmentBinding& binding, const WarpTarget& target,
                            const WarpSettings& settings);

@@ -2,6 +2,8 @@
 
 #include "core/errors.h"
 #include "io/anchor_reader.h"
+#include "io/mesh_loader.h"
+#include "support/prism_meshes.h"
 #include "support/expect_error.h"
 #include "support/test_data.h"
 
@@ -12,8 +14,13 @@
 namespace xparam {
 namespace {
 
-// Two anchors on a template of 100 vertices.
-const MeasurementTemplate kTemplate{{"HEAD_TOP", "CROTCH"}, {12, 40}, 100};
+// Three anchors on a template of 100 vertices, vertex i at (i mod 10, i / 10, i / 50): vertices
+// 1, 2, 3 on a line, the anchors not.
+const MeasurementTemplate kTemplate = [] {
+  MeasurementTemplate on{{"HEAD_TOP", "CROTCH", "NAVEL"}, {12, 40, 55}, Eigen::MatrixX3d(100, 3)};
+  for (int i = 0; i < 100; ++i) on.vertices.row(i) << i % 10, i / 10, i / 50;
+  return on;
+}();
 
 std::string parse_error(const std::string& text) {
   return test::error_message_of([&] { parse_measurements_json(text, "m.json", kTemplate); });
@@ -87,6 +94,41 @@ TEST(MeasurementReader, ErrorsNameFileLineMeasurementAndFix) {
                      "m.json:3: measurement \"x\" is defined twice");
 }
 
+TEST(MeasurementReader, TheFrameIsTheNamedPointsElseTheAnchors) {
+  const std::string girth = R"({"name": "g", "type": "plane_girth", "through": ["CROTCH"], "normal": [0, 1, 0]})";
+  // Default: the template's anchors, with their template positions.
+  const MeasurementSet anchors =
+      parse_measurements_json("{\"unit\": \"m\", \"measurements\": [" + girth + "]}", "m.json", kTemplate);
+  EXPECT_EQ(anchors.frame.vertices, (std::vector<int>{12, 40, 55}));
+  EXPECT_EQ(anchors.frame.template_points.row(1), kTemplate.vertices.row(40));
+  // Named: landmarks, anchors or vertices, each once, in vertex order.
+  const MeasurementSet named = parse_measurements_json(
+      "{\"unit\": \"m\", \"landmarks\": {\"Neck\": {\"vertex\": 7}},\n\"frame\": [\"Neck\", \"HEAD_TOP\", "
+      "{\"vertex\": 3}, \"Neck\"], \"measurements\": [" + girth + "]}",
+      "m.json", kTemplate);
+  EXPECT_EQ(named.frame.vertices, (std::vector<int>{3, 7, 12}));
+  EXPECT_EQ(named.frame.template_points.row(0), kTemplate.vertices.row(3));
+  // Points on one line fix no rotation: refused when a measurement has a fixed direction.
+  EXPECT_MESSAGE_HAS(
+      parse_error("{\"unit\": \"m\",\n\"frame\": [{\"vertex\": 1}, {\"vertex\": 2}, {\"vertex\": 3}], "
+                  "\"measurements\": [" + girth + "]}"),
+      "m.json:2: \"frame\" must hold at least 3 points not on one line: measurement \"g\" has a fixed direction");
+  MeasurementTemplate two_anchors = kTemplate;
+  two_anchors.anchor_names.pop_back();
+  two_anchors.anchor_vertices.pop_back();
+  EXPECT_MESSAGE_HAS(test::error_message_of([&] {
+                       parse_measurements_json(R"({"unit": "m", "measurements": [
+                         {"name": "h", "type": "height", "point": "CROTCH", "up": [0, 1, 0]}]})",
+                                               "m.json", two_anchors);
+                     }),
+                     "m.json:1: the template's anchors (the default \"frame\") must hold at least 3 points not on one "
+                     "line: measurement \"h\"");
+  // Without a fixed direction the frame is never used, so nothing is asked of it.
+  EXPECT_NO_THROW(parse_measurements_json(R"({"unit": "m", "frame": [{"vertex": 1}], "measurements": [
+      {"name": "s", "type": "straight", "points": ["CROTCH", "HEAD_TOP"]}]})",
+                                          "m.json", two_anchors));
+}
+
 TEST(MeasurementReader, GeodesicTakesPointsLikeStraight) {
   const MeasurementSet set = parse_measurements_json(R"({"unit": "m", "measurements": [
       {"name": "back", "type": "geodesic", "points": ["HEAD_TOP", {"vertex": 3}]},
@@ -150,7 +192,7 @@ TEST(MeasurementReader, CurveLengthNamesATemplateCurve) {
 
 TEST(MeasurementReader, TheBundledBodySetReadsOnTheSmplTemplate) {
   const AnchorSet anchors = read_anchors(test::data_path("human.anchors.json"));
-  MeasurementTemplate smpl{{}, {}, 6890};
+  MeasurementTemplate smpl{{}, {}, test::vertex_rows(load_mesh(test::data_path("human_man.obj")).mesh)};
   for (const AnchorSpec& anchor : anchors.anchors) {
     smpl.anchor_names.push_back(anchor.name);
     smpl.anchor_vertices.push_back(std::get<AnchorVertex>(anchor.location).index);

@@ -5,6 +5,7 @@
 #include "map/curve_tracing.h"
 #include "support/prism_meshes.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -185,6 +186,61 @@ TEST(BodyMeasurements, ScalingTheBodyScalesEveryMeasurement) {
     EXPECT_GT(before[i], 0.0);
     EXPECT_NEAR(after[i], s * before[i], 1e-12) << i;
   }
+}
+
+// The body moved by x -> s R x + t, and where its vertices go.
+struct Moved {
+  Mesh mesh;
+  Eigen::MatrixX3d rows;
+};
+
+Moved moved(const Mesh& body, double s, const Eigen::Matrix3d& rotation, const Eigen::Vector3d& shift) {
+  Moved out{body, {}};
+  for (const VertexHandle v : out.mesh.vertices())
+    out.mesh.set_point(v, to_point(s * rotation * position(body, v) + shift));
+  out.rows = test::vertex_rows(out.mesh);
+  return out;
+}
+
+TEST(BodyMeasurements, FixedDirectionsFollowTheFrameOfATurnedBody) {
+  // A cylinder (r 0.15, rings at 0, 0.5 and 1.2) measured with the template's up axis z: the
+  // girth round the middle ring and its height, and a plane and a height fixed in the
+  // template's frame; the frame is four ring vertices at several angles and heights.
+  const double r = 0.15;
+  const Mesh body = test::prism(test::regular_polygon(kSides, r), {0.0, 0.5, 1.2});
+  const Eigen::MatrixX3d rows = test::vertex_rows(body);
+  MeasurementSet set;
+  MeasurementDefinition height;
+  height.kind = MeasurementKind::Height;
+  height.points = {kSides + 7};
+  height.up = Eigen::Vector3d(0, 0, 1);
+  MeasurementDefinition across = height;  // a height along a slanted direction
+  across.up = Eigen::Vector3d(1, 0, 1).normalized();
+  set.measurements = {girth_through(kSides + 7, {0, 0, 1}), girth_through(kSides + 7, {0, 0, 1}, true), height,
+                      girth_through(kSides + 7, {1, 0, 2}), across};
+  set.frame.vertices = {0, kSides / 4, kSides / 2, 2 * kSides + kSides / 8};
+  set.frame.template_points.resize(4, 3);
+  for (int i = 0; i < 4; ++i) set.frame.template_points.row(i) = rows.row(set.frame.vertices[i]);
+  const std::vector<double> upright = measure_surface(set, body, rows);
+  const double polygon = 2 * kSides * r * std::sin(M_PI / kSides);
+  EXPECT_NEAR(upright[0], polygon, 1e-12);
+  EXPECT_NEAR(upright[2], 0.5, 1e-12);
+
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Vector3d shift(0.3, -1.0, 2.0);
+  for (const double s : {1.0, 1.6}) {
+    const Moved target = moved(body, s, turn, shift);
+    const std::vector<double> through = measure_surface(set, target.mesh, target.rows);
+    ASSERT_EQ(through.size(), upright.size());
+    for (std::size_t i = 0; i < upright.size(); ++i) EXPECT_NEAR(through[i], s * upright[i], 1e-6 * s * upright[i]) << i;
+    EXPECT_NEAR(through[0], s * polygon, 1e-9);
+    EXPECT_NEAR(through[2], s * 0.5, 1e-9);
+  }
+  // Without the frame the directions stay the file's: the turned cylinder is cut aslant.
+  MeasurementSet unframed = set;
+  unframed.frame = {};
+  const Moved target = moved(body, 1.0, turn, shift);
+  EXPECT_GT(std::abs(measure_surface(unframed, target.mesh, target.rows)[0] - polygon), 0.01 * polygon);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// The bundled body measurements and feature curves through the map: a uniformly scaled, moved
-// copy of the template (the identity up to scale) measures the template's values times the
-// scale, and its traced curves are the template's, that much longer.
+// The bundled body measurements and feature curves through the map: a uniformly scaled, turned
+// and moved copy of the template (the identity up to a similarity) measures the template's values
+// times the scale, and its traced curves are the template's, that much longer.
 #include "core/feature_curves.h"
 #include "io/anchor_reader.h"
 #include "io/curve_reader.h"
@@ -8,8 +8,10 @@
 #include "io/mesh_loader.h"
 #include "map/pair_mapping.h"
 #include "measure/body_measurements.h"
+#include "support/prism_meshes.h"
 #include "support/test_data.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,7 +24,7 @@ struct Body {
   LoadedMesh mesh = load_mesh(test::data_path("human_man.obj"));
   AnchorSet anchors = read_anchors(test::data_path("human.anchors.json"));
   MeasurementSet set = [this] {
-    MeasurementTemplate on{{}, {}, static_cast<int>(mesh.mesh.n_vertices())};
+    MeasurementTemplate on{{}, {}, test::vertex_rows(mesh.mesh)};
     for (const AnchorSpec& anchor : anchors.anchors) {
       on.anchor_names.push_back(anchor.name);
       on.anchor_vertices.push_back(std::get<AnchorVertex>(anchor.location).index);
@@ -88,11 +90,13 @@ TEST(MeasurementMap, ScaledCopyThroughTheMapMeasuresScaleTimesTheTemplate) {
     EXPECT_GT(on_template[i], 0.05) << body.set.measurements[i].name;
     EXPECT_LT(on_template[i], 2.0) << body.set.measurements[i].name;
   }
-  // A shift keeps the up axis; the torso planes are horizontal, so no rotation here.
+  // Scaled, turned and moved: the set's frame turns the up axis of the heights and the torso
+  // girths with the body.
   const double scale = 1.3;
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(1.1, Eigen::Vector3d(0.3, -1.0, 0.6).normalized()).toRotationMatrix();
   Mesh scaled = body.mesh.mesh;
   for (const VertexHandle v : scaled.vertices())
-    scaled.set_point(v, to_point(scale * position(scaled, v) + Eigen::Vector3d(0.2, -0.5, 1.0)));
+    scaled.set_point(v, to_point(scale * turn * position(scaled, v) + Eigen::Vector3d(0.2, -0.5, 1.0)));
   const PairMapping map = map_pair(body.mesh.mesh, body.anchors, scaled, body.anchors, curves);
   std::vector<double> target_curves;
   for (const MappedCurve& curve : map.curves)
