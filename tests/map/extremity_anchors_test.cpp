@@ -59,22 +59,30 @@ TEST(MatchExtremities, TheIdentityMatchesEachTipWithItself) {
   EXPECT_EQ(std::get<AnchorVertex>(crossed[1].specs[1].location).index, 0);
 }
 
-// A first map that draws the spike's tip into the landmark whose cell holds it (a hand squeezed
-// into the wrist): no tip pair is near through it, and the cell matches the spike's tip with
-// itself; the +z corner, which the map leaves in place, is matched through the map, not by its
-// cell.
-TEST(MatchExtremitiesByCell, MatchesTheTipOfASqueezedProtrusionThroughItsLandmark) {
-  const Mesh mesh = spiked_octahedron();
-  const std::vector<int> anchors = {5, 2};
-  const Extremities ends = extremities(mesh, 5, anchors, 0.5);
-  ASSERT_EQ(ends.tips, (std::vector<int>{0, 4}));
-  const int spike_cell = anchor_voronoi(mesh, {VertexHandle(5), VertexHandle(2)}).cell[0];
-  std::vector<Eigen::Vector3d> images;
-  for (VertexHandle v : mesh.vertices()) images.push_back(position(mesh, v));
-  images[0] = position(mesh, VertexHandle(anchors[spike_cell])) + Eigen::Vector3d(0.05, 0.0, 0.0);
-  const std::vector<std::array<int, 3>> faces = triangles_of(mesh);
-  const TipsAndAnchors side{mesh, ends.tips, ends.ends, anchors, 0.5 / std::sqrt(surface_area(mesh))};
+// The spiked octahedron with landmarks at its -z and +y corners, and a first map that draws the
+// spike's tip into the landmark whose cell holds it (a hand squeezed into the wrist), leaving the
+// rest in place.
+class SqueezedSpike : public ::testing::Test {
+ protected:
+  SqueezedSpike() : mesh(spiked_octahedron()), ends(extremities(mesh, 5, anchors, 0.5)), faces(triangles_of(mesh)) {
+    const int spike_cell = anchor_voronoi(mesh, {VertexHandle(5), VertexHandle(2)}).cell[0];
+    for (VertexHandle v : mesh.vertices()) images.push_back(position(mesh, v));
+    images[0] = position(mesh, VertexHandle(anchors[spike_cell])) + Eigen::Vector3d(0.05, 0.0, 0.0);
+  }
 
+  const Mesh mesh;
+  const std::vector<int> anchors = {5, 2};
+  const Extremities ends;
+  const std::vector<std::array<int, 3>> faces;
+  std::vector<Eigen::Vector3d> images;
+  const double reach = 0.5 / std::sqrt(surface_area(mesh));
+};
+
+// No tip pair is near through the squeezing map, and the cell matches the spike's tip with itself;
+// the +z corner, which the map leaves in place, is matched through the map, not by its cell.
+TEST_F(SqueezedSpike, TheLandmarksCellMatchesTheSqueezedTip) {
+  ASSERT_EQ(ends.tips, (std::vector<int>{0, 4}));
+  const TipsAndAnchors side{mesh, ends.tips, ends.ends, anchors, reach};
   const std::vector<ExtremityAnchor> through_map =
       match_extremities(mesh, ends.tips, mesh, ends.tips, {images, faces}, {}, 0.1);
   ASSERT_EQ(through_map.size(), 1u);
@@ -95,17 +103,7 @@ TEST(MatchExtremitiesByCell, MatchesTheTipOfASqueezedProtrusionThroughItsLandmar
 
 // Where the target's limb ends in a blob (an end without a tip: a fist), the cell's farthest end
 // stands in for the tip of the template's squeezed spike; without the end, nothing is matched.
-TEST(MatchExtremitiesByCell, ABlobsEndStandsInForATip) {
-  const Mesh mesh = spiked_octahedron();
-  const std::vector<int> anchors = {5, 2};
-  const Extremities ends = extremities(mesh, 5, anchors, 0.5);
-  ASSERT_EQ(ends.tips, (std::vector<int>{0, 4}));
-  const int spike_cell = anchor_voronoi(mesh, {VertexHandle(5), VertexHandle(2)}).cell[0];
-  std::vector<Eigen::Vector3d> images;
-  for (VertexHandle v : mesh.vertices()) images.push_back(position(mesh, v));
-  images[0] = position(mesh, VertexHandle(anchors[spike_cell])) + Eigen::Vector3d(0.05, 0.0, 0.0);
-  const std::vector<std::array<int, 3>> faces = triangles_of(mesh);
-  const double reach = 0.5 / std::sqrt(surface_area(mesh));
+TEST_F(SqueezedSpike, ABlobsEndStandsInForATip) {
   const TipsAndAnchors spiked{mesh, ends.tips, ends.ends, anchors, reach};
   const std::vector<int> blob_tips = {4};  // the spike's end seen as a blob's: an end, no tip
   const TipsAndAnchors blob{mesh, blob_tips, ends.ends, anchors, reach};
