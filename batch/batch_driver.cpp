@@ -171,6 +171,7 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
   options["map_coverage"] = settings.map_optimization.coverage_weight;
   options["anchor_slack"] = settings.anchor_slack;
   options["max_maps"] = settings.max_maps;
+  options["work_vertices"] = settings.work_vertices;
   options["quality"] = limits_json(limits);
   return options.dump();
 }

@@ -101,6 +101,13 @@ nlohmann::ordered_json diagnosis_json(const PairMapping& mapping, const std::vec
   out["warnings"] = nlohmann::ordered_json::array();
   for (const PlacedAnchors& side : mapping.anchors)
     for (const std::string& warning : side.warnings) out["warnings"].push_back(warning);
+  // Only for a target mapped through a working copy, so the others' diagnosis is as it was.
+  if (const WorkingCopyRecord& copy = mapping.working_copy; copy.used())
+    out["working_copy"] = {{"target_vertices", copy.target_vertices},
+                           {"vertices", copy.vertices},
+                           {"faces", copy.faces},
+                           {"max_carry_distance", copy.max_carry_distance},
+                           {"mean_carry_distance", copy.mean_carry_distance}};
   return out;
 }
 

@@ -3,6 +3,7 @@
 // (a ~12k-vertex template, a ~53k-vertex target) with 50 anchors, built once per process.
 #include "core/anchors.h"
 #include "core/mesh.h"
+#include "core/midpoint_subdivision.h"
 #include "core/provenance.h"
 #include "io/mesh_loader.h"
 #include "map/pair_mapping.h"
@@ -21,39 +22,11 @@ inline std::filesystem::path data(const std::string& relative) {
   return std::filesystem::path(XPARAM_SOURCE_DIR) / "tests" / "data" / relative;
 }
 
-// One 1-to-4 midpoint subdivision (the surface stays the same, only finer); provenance starts
-// afresh, so the subdivided mesh is its own input mesh.
-inline Mesh subdivide(const Mesh& mesh) {
-  Mesh fine;
-  for (VertexHandle v : mesh.vertices()) fine.add_vertex(mesh.point(v));
-  std::vector<VertexHandle> midpoint(mesh.n_edges());
-  for (EdgeHandle e : mesh.edges()) {
-    const HalfedgeHandle h = mesh.halfedge_handle(e, 0);
-    midpoint[e.idx()] =
-        fine.add_vertex(0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h))));
-  }
-  for (FaceHandle f : mesh.faces()) {
-    VertexHandle c[3], m[3];
-    int k = 0;
-    for (HalfedgeHandle h : mesh.fh_range(f)) {
-      c[k] = mesh.from_vertex_handle(h);
-      m[k] = midpoint[mesh.edge_handle(h).idx()];  // midpoint of edge c[k] -> c[k+1]
-      ++k;
-    }
-    fine.add_face(c[0], m[0], m[2]);
-    fine.add_face(c[1], m[1], m[0]);
-    fine.add_face(c[2], m[2], m[1]);
-    fine.add_face(m[0], m[1], m[2]);
-  }
-  init_provenance(fine);
-  return fine;
-}
-
 // `count` template vertices by Euclidean farthest-point sampling from vertex 0, and for each the
 // nearest target vertex (the two Spot meshes share a frame).
 struct SpotPair {
-  Mesh source = subdivide(load_mesh(data("spot.ply")).mesh);
-  Mesh target = subdivide(subdivide(subdivide(load_mesh(data("spot_low_resolution.obj")).mesh)));
+  Mesh source = subdivide_midpoint(load_mesh(data("spot.ply")).mesh);
+  Mesh target = subdivide_midpoint(subdivide_midpoint(subdivide_midpoint(load_mesh(data("spot_low_resolution.obj")).mesh)));
   std::vector<VertexHandle> source_anchors, target_anchors;
 
   explicit SpotPair(int count) {

@@ -11,6 +11,7 @@
 // target), and the peak resident memory. Reads ../shared/data; without it the benchmark reports
 // an error and maps nothing.
 #include "bench_inputs.h"
+#include "core/midpoint_subdivision.h"
 #include "core/closest_point.h"
 #include "evaluate/decimated_target.h"
 #include "evaluate/floor_time.h"
@@ -47,7 +48,7 @@ struct HumanPair50k {
     target_file = fs::temp_directory_path() /
                   ("xparam_bench_tr_reg_010_50k_" + std::to_string(static_cast<long>(::getpid())) + ".obj");
     target = evaluate::write_and_load_genus0(
-        evaluate::decimate(bench::subdivide(bench::subdivide(registration.mesh)), 50000), target_file);
+        evaluate::decimate(subdivide_midpoint(subdivide_midpoint(registration.mesh)), 50000), target_file);
     source = load_mesh(template_file);
     evaluate::CarriedLandmarks carried =
         evaluate::landmarks_through_registration(evaluate::read_ids(landmarks), registration.mesh, landmarks, landmarks);

@@ -8,9 +8,8 @@
 
 namespace xparam::evaluate {
 
-// `mesh` (any loaded mesh; only its points and faces are used) decimated by quadric-error edge
-// collapses (no collapse that turns a face's normal by more than 60 degrees) to `vertices`
-// vertices, deterministically: the same input always gives the same mesh.
+// `mesh` (any loaded mesh; only its points and faces are used) decimated to `vertices` vertices
+// by the library's decimater (map/decimation.h), deterministically.
 // \throw std::runtime_error when fewer collapses than asked for were possible
 Mesh decimate(const Mesh& mesh, int vertices);
 

@@ -2,6 +2,7 @@
 
 #include "cli/command_line.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,12 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
                   "helper anchors and the releases above each make one or more, and none starts once they are "
                   "made (metrics.json maps.limit_reached; default 6)")
       ->check(CLI::Range(1, 1000));
+  command
+      .add_option("--work-vertices", settings.work_vertices,
+                  "A target with more vertices is mapped through a copy decimated to this many, and the map "
+                  "carried back onto the target's own faces: every output still refers to the target file "
+                  "(metrics.json working_copy; default 100000; 0: never)")
+      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   command.add_flag("--untangle,!--no-untangle", settings.untangle,
                    "Slide template vertices of folded remesh faces inside their stars so the remesh has none "
                    "(the map stays a bijection; default on)");

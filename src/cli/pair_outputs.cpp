@@ -223,6 +223,14 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
     for (const std::string& warning : placed.warnings) warnings.push_back(warning);
   }
   metrics["warnings"] = warnings;
+  // Only for a target mapped through a working copy, so the others' metrics.json is as it was.
+  if (const WorkingCopyRecord& copy = mapping.working_copy; copy.used())
+    metrics["working_copy"] = {{"target_vertices", copy.target_vertices},
+                               {"vertices", copy.vertices},
+                               {"faces", copy.faces},
+                               {"max_carry_distance", copy.max_carry_distance},
+                               {"mean_carry_distance", copy.mean_carry_distance},
+                               {"seconds", copy.seconds}};
   nlohmann::json intake = intake_json(target.intake);
   intake.update(fill_geometry_json(target));
   // The distortion and coverage figures above are measured on the prepared target, fill patches

@@ -150,6 +150,16 @@ class AnchorPlacer {
 
 }  // namespace
 
+std::string snap_warning(const AnchorSpec& anchor, double snap_distance, double diagonal,
+                         const PlacementSettings& settings) {
+  if (snap_distance <= settings.warn_snap_distance * diagonal) return {};
+  std::ostringstream warning;
+  warning << where(anchor) << ": anchor " << in_quotes(anchor.name) << " is " << snap_distance
+          << " from the surface (" << 100.0 * snap_distance / diagonal
+          << "% of the bounding-box diagonal; warning above " << 100.0 * settings.warn_snap_distance << "%)";
+  return warning.str();
+}
+
 PlacedAnchors place_anchors(Mesh& mesh, const Mesh& input, const AnchorSet& anchors,
                             const PlacementSettings& settings) {
   Mesh work = mesh;
@@ -168,14 +178,9 @@ PlacedAnchors place_anchors(Mesh& mesh, const Mesh& input, const AnchorSet& anch
                        in_quotes(first.name) + " (" + where(first) + ")");
     }
     if (placed.insertion != AnchorInsertion::ExistingVertex) ++result.vertices_inserted;
-    if (placed.snap_distance > settings.warn_snap_distance * result.bbox_diagonal) {
-      std::ostringstream warning;
-      warning << where(anchor) << ": anchor " << in_quotes(anchor.name) << " is " << placed.snap_distance
-              << " from the surface (" << 100.0 * placed.snap_distance / result.bbox_diagonal
-              << "% of the bounding-box diagonal; warning above " << 100.0 * settings.warn_snap_distance
-              << "%)";
-      result.warnings.push_back(warning.str());
-    }
+    if (std::string warning = snap_warning(anchor, placed.snap_distance, result.bbox_diagonal, settings);
+        !warning.empty())
+      result.warnings.push_back(std::move(warning));
     result.anchors.push_back(std::move(placed));
   }
   mesh = std::move(work);

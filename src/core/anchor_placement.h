@@ -56,6 +56,12 @@ struct PlacedAnchors {
   PlacementSettings settings;  ///< the settings used
 };
 
+/// The warning place_anchors gives for `anchor` when it was given `snap_distance` from the surface
+/// of a mesh whose bounding-box diagonal is `diagonal`; empty when that is within
+/// settings.warn_snap_distance.
+std::string snap_warning(const AnchorSpec& anchor, double snap_distance, double diagonal,
+                         const PlacementSettings& settings);
+
 /// Make every anchor of `anchors` a vertex of `mesh`, refining it where needed.
 /// `mesh` is `input` or a refinement of it carrying provenance (init_provenance on a copy of
 /// `input`, then only splits): vertex indices and faces in `anchors` refer to `input`.

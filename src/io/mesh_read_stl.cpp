@@ -6,14 +6,16 @@
 #include "io/mesh_read_formats.h"
 #include "io/soup_builder.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <numeric>
 #include <sstream>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
 
 namespace xparam::detail {
@@ -23,14 +25,6 @@ constexpr std::size_t kBinaryHeaderBytes = 84;    // 80 free bytes + uint32 tria
 constexpr std::size_t kBinaryTriangleBytes = 50;  // normal, 3 corners (12 float32) + uint16
 
 using Corner = std::array<double, 3>;
-
-struct CornerHash {
-  std::size_t operator()(const Corner& c) const {
-    std::size_t h = 0;
-    for (double x : c) h = h * 1000003u ^ std::hash<std::uint64_t>()(std::bit_cast<std::uint64_t>(x));
-    return h;
-  }
-};
 
 // Corners of all triangles, in file order, before welding.
 struct CornerList {
@@ -43,18 +37,43 @@ class Welder {
   Welder(const std::string& source, const CornerList& list) : source_(source), list_(list) {}
 
   TriangleSoup weld() {
-    const std::size_t triangle_count = list_.corners.size() / 3;
-    std::vector<int> corner_vertex(list_.corners.size());
+    const std::size_t corner_count = list_.corners.size();
+    const std::size_t triangle_count = corner_count / 3;
+    if (corner_count > static_cast<std::size_t>(std::numeric_limits<std::uint32_t>::max()))
+      throw_input_error(source_, std::to_string(triangle_count) + " triangles, more than the supported " +
+                                     std::to_string(std::numeric_limits<std::uint32_t>::max() / 3));
+    for (std::size_t k = 0; k < corner_count; ++k) check_finite(list_.corners[k], k);
+    // Corners sorted by position (then by file order) put equal positions side by side: each run's
+    // first corner is its first appearance. A sort rather than a hash table, so no file can make
+    // welding slow by crafting corners whose hashes collide (O(n log n) whatever the input).
+    // `+ 0.0` turns -0 into +0, so equal coordinates weld whatever their sign.
+    const auto key = [&](std::uint32_t k) {
+      const Corner& c = list_.corners[k];
+      return std::array<double, 3>{c[0] + 0.0, c[1] + 0.0, c[2] + 0.0};
+    };
+    std::vector<std::uint32_t> order(corner_count);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const std::array<double, 3> ka = key(a), kb = key(b);
+      return ka != kb ? ka < kb : a < b;
+    });
+    // first[k]: the first corner at corner k's position.
+    std::vector<std::uint32_t> first(corner_count);
+    for (std::size_t i = 0; i < corner_count; ++i)
+      first[order[i]] = i > 0 && key(order[i]) == key(order[i - 1]) ? first[order[i - 1]] : order[i];
+    std::vector<std::uint32_t>().swap(order);
+    // Vertices numbered in order of first appearance; `first` becomes each corner's vertex.
     std::vector<Eigen::Vector3d> positions;
-    std::unordered_map<Corner, int, CornerHash> index_of;
-    for (std::size_t k = 0; k < list_.corners.size(); ++k) {
-      Corner c = list_.corners[k];
-      check_finite(c, k);
-      for (double& x : c) x += 0.0;  // -0 becomes +0, so equal coordinates weld whatever their sign
-      const auto [it, inserted] = index_of.try_emplace(c, static_cast<int>(positions.size()));
-      if (inserted) positions.emplace_back(c[0], c[1], c[2]);
-      corner_vertex[k] = it->second;
+    for (std::size_t k = 0; k < corner_count; ++k) {
+      if (first[k] == k) {
+        const std::array<double, 3> c = key(static_cast<std::uint32_t>(k));
+        first[k] = static_cast<std::uint32_t>(positions.size());
+        positions.emplace_back(c[0], c[1], c[2]);
+      } else {
+        first[k] = first[first[k]];  // first[k] < k was renumbered already
+      }
     }
+    const std::vector<std::uint32_t>& corner_vertex = first;
 
     SoupBuilder builder(source_, positions.size(), triangle_count);
     for (std::size_t v = 0; v < positions.size(); ++v) builder.add_vertex(positions[v], {std::int64_t(v), 0});

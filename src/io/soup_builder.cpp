@@ -9,6 +9,10 @@
 #include <utility>
 
 namespace xparam::detail {
+namespace {
+// Polygons up to this many corners are checked for a repeated corner by scanning (quadratic).
+constexpr std::size_t kScannedCorners = 16;
+}  // namespace
 
 std::string describe(const char* kind, FileLocation where) {
   std::string text = std::string(kind) + " " + std::to_string(where.index);
@@ -44,16 +48,23 @@ void SoupBuilder::add_face(std::span<const std::int64_t> corners, FileLocation w
   if (corners.size() < 3) {
     fail(describe("face", where) + " has " + std::to_string(corners.size()) + " corners (at least 3 needed)");
   }
+  // Most polygons are small (a uchar count in most files): scanning the earlier corners costs
+  // less than marking. A large one marks each vertex with the face, so the check stays linear.
+  const bool marking = corners.size() > kScannedCorners;
+  if (marking && used_by_face_.empty()) used_by_face_.assign(vertex_count_, -1);
   for (std::size_t i = 0; i < corners.size(); ++i) {
     const std::int64_t c = corners[i];
     if (c < 0 || static_cast<std::uint64_t>(c) >= vertex_count_) {
       fail(describe("face", where) + " refers to vertex " + std::to_string(c) + " but the file has " +
            std::to_string(vertex_count_) + " vertices");
     }
-    // Polygons are small (a uchar count in most files), so the quadratic scan is cheaper than a set.
-    for (std::size_t j = 0; j < i; ++j) {
-      if (corners[j] == c) fail(describe("face", where) + " uses vertex " + std::to_string(c) + " twice");
+    bool repeated = false;
+    if (marking) {
+      repeated = std::exchange(used_by_face_[static_cast<std::size_t>(c)], faces_) == faces_;
+    } else {
+      for (std::size_t j = 0; j < i && !repeated; ++j) repeated = corners[j] == c;
     }
+    if (repeated) fail(describe("face", where) + " uses vertex " + std::to_string(c) + " twice");
   }
   const int first = static_cast<int>(corners[0]);
   for (std::size_t i = 1; i + 1 < corners.size(); ++i) {

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace xparam::detail {
 
@@ -35,7 +36,8 @@ class SoupBuilder {
 
   /// Appends a polygon with 0-based corner indices, fan-triangulated from its first corner
   /// when it has more than three. Throws InputError for fewer than three corners, an index
-  /// outside [0, vertex_count) or an index repeated within the polygon.
+  /// outside [0, vertex_count) or an index repeated within the polygon. Linear in the corners
+  /// (a scanned polygon may have hundreds of thousands).
   void add_face(std::span<const std::int64_t> corners, FileLocation where);
 
   /// The vertex count given to the constructor.
@@ -58,6 +60,9 @@ class SoupBuilder {
   TriangleSoup soup_;
   std::size_t vertex_count_;
   std::int64_t faces_ = 0;
+  /// Per vertex, the last face (faces_ at the time) that used it: finds a repeated corner of a
+  /// large polygon in one pass. Allocated at the first polygon of more than 16 corners.
+  std::vector<std::int64_t> used_by_face_;
 };
 
 /// "face 17 (line 42)" or "face 17": an element named for a message.

@@ -4,6 +4,8 @@
 #include "core/errors.h"
 #include "core/provenance.h"
 #include "core/stopwatch.h"
+#include "map/pair_finish.h"
+#include "map/working_copy.h"
 
 #include <tbb/parallel_for.h>
 
@@ -247,19 +249,6 @@ std::vector<int> with_layout_neighbours(const std::vector<int>& anchors, const L
   return result;
 }
 
-// The distance from the remesh's point at the template's landmark `name` to the target's.
-double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors,
-                     const Mesh& source, const Mesh& target, const Eigen::MatrixX3d& remesh_vertices) {
-  std::size_t k = 0;
-  while (all_anchors[0].anchors[k].name != name) ++k;
-  const SurfacePoint& on_template = all_anchors[0].anchors[k].input_point;
-  Eigen::Vector3d on_remesh = Eigen::Vector3d::Zero();
-  int corner = 0;
-  for (VertexHandle v : source.fv_range(source.face_handle(on_template.face)))
-    on_remesh += on_template.bary[corner++] * remesh_vertices.row(v.idx()).transpose();
-  return (on_remesh - position(target, all_anchors[1].anchors[k].input_point)).norm();
-}
-
 // map_pair on the anchors as given (no anchor released).
 PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
                                 const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
@@ -354,36 +343,25 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
     result.max_clamp_distance = std::max(result.max_clamp_distance, images[v].clamp_distance);
   }
   result.face_patch = input_face_patches(layout.sides[0].mesh, static_cast<int>(source.n_faces()));
-  // An optimized map is piecewise linear on the remesh: a curve point goes to its face's chord
-  // triangle, then onto the nearest target point.
-  std::optional<ClosestPointIndex> on_target;
-  if (attempt.optimized && !curves.empty()) on_target.emplace(target);
-  const CurvePointMap image_of = [&](const SurfacePoint& point) {
-    if (on_target) {
-      Eigen::Vector3d chord = Eigen::Vector3d::Zero();
-      for (int c = 0; c < 3; ++c) chord += point.bary[c] * image_positions[faces[point.face][c]];
-      const ClosestPoint nearest = on_target->closest(chord);
-      return nearest.location;
-    }
-    const MappedPoint image = cross.map_input_point(warp(point));
-    result.max_clamp_distance = std::max(result.max_clamp_distance, image.clamp_distance);
-    return image.on_input;
-  };
-  for (const FeatureCurve& curve : curves) result.curves.push_back(trace_curve(curve, source, target, image_of));
+  if (attempt.optimized) {
+    // An optimized map is piecewise linear on the remesh.
+    if (!curves.empty())
+      result.curves =
+          trace_curves_through_remesh(curves, source, target, ClosestPointIndex(target), image_positions, faces);
+  } else {
+    const CurvePointMap image_of = [&](const SurfacePoint& point) {
+      const MappedPoint image = cross.map_input_point(warp(point));
+      result.max_clamp_distance = std::max(result.max_clamp_distance, image.clamp_distance);
+      return image.on_input;
+    };
+    for (const FeatureCurve& curve : curves) result.curves.push_back(trace_curve(curve, source, target, image_of));
+  }
   result.seconds.compose += watch.lap();
 
   stage("metrics");
-  std::vector<Eigen::Vector3d> source_positions(n_vertices);
-  for (int v = 0; v < n_vertices; ++v) source_positions[v] = position(source, source.vertex_handle(v));
-  for (const PlacedAnchor& anchor : result.anchors[0].anchors)
-    result.anchor_miss.push_back(miss_distance(anchor.name, result.anchors, source, target, result.remesh_vertices));
-  result.distortion = measure_distortion(source_positions, image_positions, faces);
-  result.quality = measure_remesh_quality(faces, image_positions, result.correspondence, target);
-  result.coverage = measure_remesh_coverage(target, image_positions, faces);
-  result.folds_by_anchor = folds_by_anchor(layout.sides[0].mesh, layout.sides[0].anchor_vertices, names,
-                                           faces, result.quality.flipped_faces);
-  result.mismatched_corners = mismatched_corners(layout, names);
   if (attempt.layout != &result.layout) result.layout = *attempt.layout;  // a copy, only when a later one won
+  measure_pair_mapping(result, source, target);
+  result.mismatched_corners = mismatched_corners(layout, names);
   result.seconds.metrics = watch.lap();
   result.seconds.total = total.lap();
   return result;
@@ -663,14 +641,24 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
                      const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
                      const PairSettings& settings, const StageCallback& on_stage) {
   Stopwatch total;
+  // A large target is mapped through its working copy, and the map carried back onto it.
+  if (on_stage && settings.work_vertices > 0 && static_cast<int>(target.n_vertices()) > settings.work_vertices)
+    on_stage("working copy");
+  Stopwatch copy_watch;
+  std::string refusal;
+  const std::optional<WorkingCopy> copy =
+      WorkingCopy::make(target, target_anchors, settings.work_vertices, settings.placement, &refusal);
+  const double copy_seconds = copy_watch.lap();
+  const Mesh& mapped = copy ? copy->mesh() : target;
+  const AnchorSet& mapped_anchors = copy ? copy->anchors() : target_anchors;
   // One map is kept back for the helper anchors at protrusion tips, tried last on the map the
   // retries below leave (which it must beat).
   const int kept_back = settings.extremity_anchors && settings.max_maps > 1 ? 1 : 0;
   MapBudget budget{settings.max_maps - kept_back};
-  const PairInputs in{source, target, curves, settings, on_stage, budget};
+  const PairInputs in{source, mapped, curves, settings, on_stage, budget};
   AnchoredMap plain{
-      map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, budget, on_stage),
-      source_anchors, target_anchors};
+      map_through_anchors(source, source_anchors, mapped, mapped_anchors, curves, settings, budget, on_stage),
+      source_anchors, mapped_anchors};
   PairSeconds seconds = plain.map.seconds;
   std::optional<AnchoredMap> best;  // a map that folds less than `plain`, when one was found
   if (settings.tip_anchors && !plain.map.quality.flipped_faces.empty())
@@ -696,6 +684,17 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     }
   }
   PairMapping result = best ? std::move(best->map) : std::move(plain.map);
+  if (copy) {
+    if (on_stage) on_stage("carry back");
+    copy->carry_back(result, source, curves);
+    result.working_copy.seconds += copy_seconds;
+    // A released anchor's landmark is among the first map's (the released map no longer has it).
+    if (!result.released_anchors.empty())
+      for (PlacedAnchor& anchor : plain.map.anchors[1].anchors)
+        anchor.input_point = copy->on_target(anchor.input_point).location;
+  } else if (!refusal.empty()) {
+    result.anchors[1].warnings.push_back("target: " + refusal);
+  }
   for (ReleasedAnchor& anchor : result.released_anchors)
     anchor.miss_distance =
         miss_distance(anchor.name, plain.map.anchors, source, target, result.remesh_vertices);

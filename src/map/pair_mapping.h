@@ -87,6 +87,11 @@ struct PairSettings {
   /// Slack of particular anchors by name, in place of anchor_slack (target units): the helper
   /// anchors at protrusion tips are set here, loose since a tip is a region more than a point.
   std::map<std::string, double> anchor_slack_by_name;
+  /// A target with more vertices than this is mapped through a working copy decimated to this
+  /// many (map/working_copy.h), and the map carried back onto the target's own faces; 0 maps every
+  /// target as it is. 100k vertices keeps a pair within seconds to a minute and is finer than the
+  /// landmarks and the template's resolution need (a 6890-vertex SMPL template).
+  int work_vertices = 100000;
 };
 
 /// Wall-clock seconds of each stage of map_pair (not deterministic, never compared).
@@ -138,6 +143,22 @@ struct MapOptimizationSummary {
   int moved_vertices = 0;      ///< template vertices whose image moved
 };
 
+/// The simplified copy a large target was mapped through (PairSettings::work_vertices); zeros
+/// when the target was mapped as it is.
+struct WorkingCopyRecord {
+  int target_vertices = 0;  ///< vertices of the target as loaded
+  int vertices = 0;         ///< vertices of the working copy (0: no working copy)
+  int faces = 0;            ///< faces of the working copy
+  /// Largest and mean distance (target units) from a template vertex's image on the working copy
+  /// to where it was carried on the target: the nearest target point, or the same point where the
+  /// working copy's face is the target's own.
+  double max_carry_distance = 0.0;
+  double mean_carry_distance = 0.0;
+  double seconds = 0.0;  ///< decimating and carrying back (not deterministic)
+
+  bool used() const { return vertices > 0; }
+};
+
 /// Everything one template/target pair yields. With untangling on, the map is Gamma . phi
 /// (phi a homeomorphism of the template, map/remesh_untangling.h): the correspondence, remesh,
 /// curves and metrics all describe it.
@@ -187,6 +208,10 @@ struct PairMapping {
   std::array<int, 2>
       inverted_triangles{};  ///< parameterization triangles per side with non-positive area (0: bijective)
   double max_clamp_distance = 0.0;  ///< largest clamp of a query onto its target domain (rounding-sized)
+  /// The working copy the map was made on, for a target above PairSettings::work_vertices. Then
+  /// the correspondence, remesh, curves, metrics, anchors' input points and helper anchors refer
+  /// to the target as given; the layout (and its counts) to the working copy.
+  WorkingCopyRecord working_copy;
   PairSeconds seconds;
   PairSettings settings;
 };

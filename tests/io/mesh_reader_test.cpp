@@ -8,6 +8,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -160,6 +161,75 @@ TEST_F(MeshReaderTest, StlWeldsEqualCornersInOrderOfFirstAppearance) {
     put(binary, std::uint16_t{0});
   }
   expect_same_soup(from_ascii, read_triangle_soup(write_file(dir_, "square_binary.STL", binary)));
+}
+
+TEST_F(MeshReaderTest, LargePolygonsFanFromTheirFirstCornerAndStillRefuseARepeatedCorner) {
+  // One 50,000-corner polygon (a scanner's cap), then a 20-corner one on the same vertices: the
+  // marks one polygon leaves on its vertices must not count against the next.
+  constexpr int kCorners = 50000;
+  std::ostringstream off;
+  off.precision(17);
+  off << "OFF\n" << kCorners << " 2 0\n";
+  for (int v = 0; v < kCorners; ++v) off << std::cos(v * 1e-4) << " " << std::sin(v * 1e-4) << " 0\n";
+  std::ostringstream big, small;
+  big << kCorners;
+  for (int v = 0; v < kCorners; ++v) big << " " << v;
+  small << 20;
+  for (int v = 0; v < 20; ++v) small << " " << v;
+  const TriangleSoup soup =
+      read_triangle_soup(write_file(dir_, "cap.off", off.str() + big.str() + "\n" + small.str() + "\n"));
+  ASSERT_EQ(soup.triangles.size(), std::size_t{kCorners - 2 + 18});
+  for (int i = 0; i < kCorners - 2; ++i) EXPECT_EQ(soup.triangles[i], (Triangle{0, i + 1, i + 2})) << i;
+  for (int i = 0; i < 18; ++i) EXPECT_EQ(soup.triangles[kCorners - 2 + i], (Triangle{0, i + 1, i + 2})) << i;
+  EXPECT_EQ(soup.polygons_triangulated, 2);
+
+  // The same cap with its last corner repeating corner 25,000: refused, naming that vertex.
+  std::ostringstream repeated;
+  repeated << kCorners;
+  for (int v = 0; v + 1 < kCorners; ++v) repeated << " " << v;
+  repeated << " 25000\n";
+  try {
+    read_triangle_soup(write_file(dir_, "cap_repeated.off", off.str() + repeated.str() + small.str() + "\n"));
+    ADD_FAILURE() << "a polygon using a vertex twice was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("face 0 (line 50003) uses vertex 25000 twice"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST_F(MeshReaderTest, StlCornersCraftedToCollideInAHashWeldExactly) {
+  // Corners whose coordinates were chosen so that an FNV-style hash of their bit patterns (what
+  // the welder once used: h = h * 1000003 ^ bits) is the same for all of them: distinct
+  // positions must stay distinct, equal ones weld, numbered in order of first appearance.
+  constexpr int kPositions = 3000;
+  constexpr std::uint64_t kPrime = 1000003u;
+  const double x = 1.0;
+  std::vector<Eigen::Vector3d> crafted;
+  for (std::uint64_t k = 1; static_cast<int>(crafted.size()) < kPositions; ++k) {
+    const double y = 1.0 + static_cast<double>(k) * 1e-6;
+    const std::uint64_t partial = (std::bit_cast<std::uint64_t>(x) * kPrime) ^ std::bit_cast<std::uint64_t>(y);
+    const double z = std::bit_cast<double>(0x3ff0000000000000ULL ^ (partial * kPrime));
+    if (std::isfinite(z)) crafted.emplace_back(x, y, z);
+  }
+  const Eigen::Vector3d apex(-1.0, 0.5, 0.25);
+  std::ostringstream stl;
+  stl.precision(17);
+  stl << "solid crafted\n";
+  const auto corner = [&](const Eigen::Vector3d& p) { stl << "  vertex " << p.x() << " " << p.y() << " " << p.z() << "\n"; };
+  for (int i = 0; i + 1 < kPositions; ++i) {
+    stl << "facet normal 0 0 0\n outer loop\n";
+    corner(apex);
+    corner(crafted[i]);
+    corner(crafted[i + 1]);
+    stl << " endloop\nendfacet\n";
+  }
+  stl << "endsolid crafted\n";
+  const TriangleSoup soup = read_triangle_soup(write_file(dir_, "crafted.stl", stl.str()));
+  ASSERT_EQ(soup.vertices.size(), std::size_t{kPositions + 1});
+  EXPECT_EQ(soup.vertices[0], apex);
+  for (int i = 0; i < kPositions; ++i) EXPECT_EQ(soup.vertices[i + 1], crafted[i]) << i;
+  ASSERT_EQ(soup.triangles.size(), std::size_t{kPositions - 1});
+  for (int i = 0; i + 1 < kPositions; ++i) EXPECT_EQ(soup.triangles[i], (Triangle{0, i + 1, i + 2})) << i;
 }
 
 TEST_F(MeshReaderTest, OneMeshInEveryFormatGivesOneSoup) {

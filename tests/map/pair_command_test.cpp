@@ -3,6 +3,7 @@
 // the template's faces, metrics.json reports the untangling, `--no-untangle` leaves the folds
 // (listed, credited to anchors, marked in stretch.ply), and a failing pair exits 3 without
 // writing results.
+#include "support/correspondence_csv.h"
 #include "support/plain_obj.h"
 #include "support/test_data.h"
 
@@ -53,16 +54,11 @@ TEST(PairCommand, RemeshIsTheCorrespondenceOnTheTargetWithTheTemplatesFaces) {
   ASSERT_EQ(remesh.vertices.size(), source.vertices.size());
   EXPECT_EQ(remesh.faces, source.faces);
 
-  std::ifstream csv(out / "correspondence.csv");
-  std::string line;
-  std::getline(csv, line);
-  EXPECT_EQ(line, "vertex,face,b0,b1,b2,filled,distance_to_scan");
+  const test::CorrespondenceCsv csv = test::read_correspondence_csv(out / "correspondence.csv");
+  EXPECT_EQ(csv.header, "vertex,face,b0,b1,b2,filled,distance_to_scan");
   std::size_t rows = 0;
-  while (std::getline(csv, line)) {
-    std::istringstream fields(line);
-    std::string field;
-    std::vector<double> values;
-    while (std::getline(fields, field, ',')) values.push_back(std::stod(field));
+  for (const std::vector<double>& values : csv.rows) {
+    const std::string line = "row " + std::to_string(rows);
     ASSERT_EQ(values.size(), 7u) << line;
     EXPECT_EQ(values[5], 0.0) << line;  // a clean target: nothing filled in
     const int vertex = static_cast<int>(values[0]);

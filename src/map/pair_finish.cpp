@@ -1,0 +1,53 @@
+#include "map/pair_finish.h"
+
+namespace xparam {
+
+std::vector<MappedCurve> trace_curves_through_remesh(const std::vector<FeatureCurve>& curves, const Mesh& source,
+                                                     const Mesh& target, const ClosestPointIndex& on_target,
+                                                     const std::vector<Eigen::Vector3d>& remesh,
+                                                     const std::vector<std::array<int, 3>>& faces) {
+  const CurvePointMap image_of = [&](const SurfacePoint& point) {
+    Eigen::Vector3d chord = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 3; ++c) chord += point.bary[c] * remesh[faces[point.face][c]];
+    return on_target.closest(chord).location;
+  };
+  std::vector<MappedCurve> mapped;
+  for (const FeatureCurve& curve : curves) mapped.push_back(trace_curve(curve, source, target, image_of));
+  return mapped;
+}
+
+double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors, const Mesh& source,
+                     const Mesh& target, const Eigen::MatrixX3d& remesh_vertices) {
+  std::size_t k = 0;
+  while (all_anchors[0].anchors[k].name != name) ++k;
+  const SurfacePoint& on_template = all_anchors[0].anchors[k].input_point;
+  Eigen::Vector3d on_remesh = Eigen::Vector3d::Zero();
+  int corner = 0;
+  for (VertexHandle v : source.fv_range(source.face_handle(on_template.face)))
+    on_remesh += on_template.bary[corner++] * remesh_vertices.row(v.idx()).transpose();
+  return (on_remesh - position(target, all_anchors[1].anchors[k].input_point)).norm();
+}
+
+void measure_pair_mapping(PairMapping& mapping, const Mesh& source, const Mesh& target) {
+  const int n_vertices = static_cast<int>(source.n_vertices());
+  const std::vector<std::array<int, 3>> faces = triangles_of(source);
+  std::vector<Eigen::Vector3d> source_positions(n_vertices), image_positions(n_vertices);
+  for (int v = 0; v < n_vertices; ++v) {
+    source_positions[v] = position(source, source.vertex_handle(v));
+    image_positions[v] = mapping.remesh_vertices.row(v).transpose();
+  }
+  std::vector<std::string> names;
+  mapping.anchor_miss.clear();
+  for (const PlacedAnchor& anchor : mapping.anchors[0].anchors) {
+    names.push_back(anchor.name);
+    mapping.anchor_miss.push_back(miss_distance(anchor.name, mapping.anchors, source, target, mapping.remesh_vertices));
+  }
+  mapping.distortion = measure_distortion(source_positions, image_positions, faces);
+  mapping.quality = measure_remesh_quality(faces, image_positions, mapping.correspondence, target);
+  mapping.coverage = measure_remesh_coverage(target, image_positions, faces);
+  const LayoutSide& side = mapping.layout.layout.sides[0];
+  mapping.folds_by_anchor =
+      folds_by_anchor(side.mesh, side.anchor_vertices, names, faces, mapping.quality.flipped_faces);
+}
+
+}  // namespace xparam
