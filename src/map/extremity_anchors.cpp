@@ -113,9 +113,9 @@ constexpr double kSqueezed = 0.5;
 // other mesh to stand in for its tip.
 constexpr double kBlobTipReaches = 3.0;
 
-// Per anchor of one mesh: the unmatched tip in its Voronoi cell farthest from it (-1: none),
-// the cell's farthest end (Extremities::ends), and their distances from the anchor as fractions
-// of sqrt(area).
+// Per anchor of one mesh: the unmatched tip in its Voronoi cell farthest from it and the cell's
+// farthest end (Extremities::ends), -1 where there is none, and their distances from the anchor as
+// fractions of sqrt(area).
 struct FarthestInCells {
   std::vector<int> tip;
   std::vector<double> tip_distance;
@@ -213,7 +213,7 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
                                                        const std::vector<ExtremityAnchor>& matched,
                                                        const std::vector<std::string>& taken) {
   std::vector<ExtremityAnchor> by_cell;
-  if (source.tips.empty() || target.tips.empty()) return by_cell;
+  if (source.tips.empty() && target.tips.empty()) return by_cell;  // a blob stands in only for a tip
   std::vector<int> matched_source, matched_target;
   std::vector<std::string> names = taken;
   for (const ExtremityAnchor& tip : matched) {

@@ -105,14 +105,14 @@ TEST_F(SqueezedSpike, TheLandmarksCellMatchesTheSqueezedTip) {
 // stands in for the tip of the template's squeezed spike; without the end, nothing is matched.
 TEST_F(SqueezedSpike, ABlobsEndStandsInForATip) {
   const TipsAndAnchors spiked{mesh, ends.tips, ends.ends, anchors, reach};
-  const std::vector<int> blob_tips = {4};  // the spike's end seen as a blob's: an end, no tip
+  const std::vector<int> blob_tips;  // every end seen as a blob's: no tip on this mesh at all
   const TipsAndAnchors blob{mesh, blob_tips, ends.ends, anchors, reach};
   const std::vector<ExtremityAnchor> by_cell = match_extremities_by_cell(spiked, blob, {images, faces}, {}, {});
   ASSERT_EQ(by_cell.size(), 1u);
   EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[0].location).index, 0);
   EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[1].location).index, 0);
 
-  const std::vector<int> no_end = {4};
+  const std::vector<int> no_end = {4};  // the +z corner's end only
   const TipsAndAnchors bare{mesh, blob_tips, no_end, anchors, reach};
   EXPECT_TRUE(match_extremities_by_cell(spiked, bare, {images, faces}, {}, {}).empty());
 }
