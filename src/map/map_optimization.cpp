@@ -528,7 +528,7 @@ class MapOptimizer {
     if (!std::isfinite(before)) return false;
 
     // The tangent plane: the target face under the image.
-    const PlaneFrame tangent = plane_frame(to_eigen(target_.calc_face_normal(target_.face_handle(here.face))));
+    const PlaneFrame tangent = plane_frame(reference_.face_normal(here.face));
     if (!tangent.valid) return false;
     // The step's scale: the mean length of v's edges (the shortest can be near 0 while a
     // collapsed face opens again).
