@@ -8,6 +8,7 @@
 #include "warp/garment_warp.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,10 +20,10 @@ struct WarpBody {
   std::string fallback;      ///< why the remesh was used (names the file and the problem); empty otherwise
 };
 
-/// Give every image its target's own surface where it can be loaded again (in parallel, in the
-/// calling arena). `search_folder` (may be empty) is where moved target files are looked for by name.
-/// \return one WarpBody per image, in the order of `images`
-std::vector<WarpBody> attach_surfaces(const ArchiveReader& reader, std::vector<WarpTarget>& images,
-                                      const std::filesystem::path& search_folder);
+/// Target `name`'s own surface where it can be loaded again (through the scan intake as the batch
+/// ran it), with `body` saying so; none, with `body.fallback` saying why. `search_folder` (may be
+/// empty) is where moved target files are looked for by name.
+std::optional<TriangleSoup> load_surface(const ArchiveReader& reader, const std::string& name,
+                                         const std::filesystem::path& search_folder, WarpBody& body);
 
 }  // namespace xparam::cli

@@ -238,18 +238,8 @@ int run_warp(const WarpOptions& options) {
   std::map<std::string, WarpBody> bodies;
   std::mutex print;
   std::size_t done = 0;
+  std::vector<WarpBody> found(images.size());
   arena.execute([&] {
-    const std::vector<WarpBody> found = attach_surfaces(*reader, images, options.targets_folder);
-    for (std::size_t i = 0; i < images.size(); ++i) {
-      bodies[images[i].name] = found[i];
-      if (found[i].surface_file.empty())
-        std::cerr << "xparam warp: warning: " << images[i].name
-                  << ": penetration and clearance measured against its remesh, not its own surface: "
-                  << found[i].fallback
-                  << (options.targets_folder.empty() ? " (give --targets DIR, the folder now holding the batch's target files)"
-                                                     : "")
-                  << "\n";
-    }
     binding = bind_garment(body_template, garment.mesh.vertices, bind);
     if (!options.quiet)
       std::cerr << "bound " << garment.mesh.vertices.size() << " garment vertices to the template (farthest "
@@ -259,8 +249,17 @@ int run_warp(const WarpOptions& options) {
       const std::lock_guard<std::mutex> guard(print);
       ++done;
       if (!options.quiet) std::cerr << warp_progress_line(done, images.size(), g) << "\n";
-    });
+    }, [&](std::size_t i) { return load_surface(*reader, images[i].name, options.targets_folder, found[i]); });
   });
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    bodies[images[i].name] = found[i];
+    if (found[i].surface_file.empty() && !found[i].fallback.empty())
+      std::cerr << "xparam warp: warning: " << images[i].name
+                << ": penetration and clearance measured against its remesh, not its own surface: " << found[i].fallback
+                << (options.targets_folder.empty() ? " (give --targets DIR, the folder now holding the batch's target files)"
+                                                   : "")
+                << "\n";
+  }
   // Targets without a map, in the archive's order among the others.
   warped.insert(warped.end(), unmapped.begin(), unmapped.end());
   std::sort(warped.begin(), warped.end(), [](const WarpedGarment& a, const WarpedGarment& b) { return a.name < b.name; });

@@ -30,11 +30,18 @@ WarpedGarment warp_garment(const TriangleSoup& garment, const GarmentBinding& bi
 
 std::vector<WarpedGarment> warp_garment_onto(const TriangleSoup& garment, const GarmentBinding& binding,
                                              const std::vector<WarpTarget>& targets, const WarpSettings& settings,
-                                             const std::function<void(std::size_t, const WarpedGarment&)>& on_done) {
+                                             const std::function<void(std::size_t, const WarpedGarment&)>& on_done,
+                                             const SurfaceLoader& load_surface) {
   std::vector<WarpedGarment> results(targets.size());
   tbb::parallel_for(std::size_t{0}, targets.size(), [&](std::size_t i) {
     try {
-      results[i] = warp_garment(garment, binding, targets[i], settings);
+      std::optional<TriangleSoup> surface = !targets[i].surface && load_surface ? load_surface(i) : std::nullopt;
+      if (surface) {
+        WarpTarget with_surface{targets[i].name, targets[i].body, std::move(surface)};
+        results[i] = warp_garment(garment, binding, with_surface, settings);
+      } else {
+        results[i] = warp_garment(garment, binding, targets[i], settings);
+      }
     } catch (const Error& e) {
       results[i] = WarpedGarment{};
       results[i].name = targets[i].name;

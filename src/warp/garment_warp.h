@@ -53,11 +53,18 @@ struct WarpedGarment {
 WarpedGarment warp_garment(const TriangleSoup& garment, const GarmentBinding& binding, const WarpTarget& target,
                            const WarpSettings& settings);
 
+/// A target's own surface (WarpTarget::surface), loaded by index just before its garment is
+/// warped and released right after, so a batch of large scans is never in memory at once; none:
+/// measured against the image.
+using SurfaceLoader = std::function<std::optional<TriangleSoup>(std::size_t)>;
+
 /// warp_garment onto every target, in parallel; a target's Error becomes its `error`.
 /// `on_done(index)` is called once per target as it finishes, from the worker that ran it
-/// (the caller serializes what it prints). Results in the order of `targets`.
+/// (the caller serializes what it prints); `load_surface`, when given, gives a target without a
+/// surface of its own one, from that worker too. Results in the order of `targets`.
 std::vector<WarpedGarment> warp_garment_onto(const TriangleSoup& garment, const GarmentBinding& binding,
                                              const std::vector<WarpTarget>& targets, const WarpSettings& settings,
-                                             const std::function<void(std::size_t, const WarpedGarment&)>& on_done = {});
+                                             const std::function<void(std::size_t, const WarpedGarment&)>& on_done = {},
+                                             const SurfaceLoader& load_surface = {});
 
 }  // namespace xparam
