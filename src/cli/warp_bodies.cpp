@@ -2,19 +2,9 @@
 
 #include "batch/batch_driver.h"
 #include "batch/target_reload.h"
+#include "core/mesh_builder.h"
 
 namespace xparam::cli {
-namespace {
-
-TriangleSoup soup_of(const LoadedMesh& loaded, const std::string& source) {
-  TriangleSoup soup;
-  soup.source = source;
-  for (const VertexHandle v : loaded.mesh.vertices()) soup.vertices.push_back(position(loaded.mesh, v));
-  soup.triangles = triangles_of(loaded.mesh);
-  return soup;
-}
-
-}  // namespace
 
 std::optional<TriangleSoup> load_surface(const ArchiveReader& reader, const std::string& name,
                                          const std::filesystem::path& search_folder, WarpBody& body) {
@@ -25,7 +15,7 @@ std::optional<TriangleSoup> load_surface(const ArchiveReader& reader, const std:
     return std::nullopt;
   }
   body.surface_file = reloaded.mesh_file.string();
-  return soup_of(*reloaded.loaded, body.surface_file);
+  return soup_of(reloaded.loaded->mesh, body.surface_file);
 }
 
 }  // namespace xparam::cli

@@ -3,6 +3,7 @@
 #include "core/errors.h"
 
 #include <sstream>
+#include <utility>
 
 namespace xparam {
 
@@ -31,6 +32,15 @@ Mesh build_mesh(const TriangleSoup& soup, TriangleOrder order) {
     }
   }
   return mesh;
+}
+
+TriangleSoup soup_of(const Mesh& mesh, std::string source) {
+  TriangleSoup soup;
+  soup.source = std::move(source);
+  soup.vertices.reserve(mesh.n_vertices());
+  for (VertexHandle v : mesh.vertices()) soup.vertices.push_back(position(mesh, v));
+  soup.triangles = triangles_of(mesh);
+  return soup;
 }
 
 }  // namespace xparam

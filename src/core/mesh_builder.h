@@ -21,4 +21,8 @@ enum class TriangleOrder {
 /// \throw InputError naming the soup's file and the face when OpenMesh refuses a face.
 Mesh build_mesh(const TriangleSoup& soup, TriangleOrder order = TriangleOrder::AsInFile);
 
+/// The soup of `mesh` (build_mesh's inverse): its vertices' positions and its faces' corners, in
+/// index order, named `source` in messages.
+TriangleSoup soup_of(const Mesh& mesh, std::string source);
+
 }  // namespace xparam

@@ -1,9 +1,9 @@
 #include "map/working_copy.h"
 
 #include "core/errors.h"
+#include "core/mesh_builder.h"
 #include "core/provenance.h"
 #include "core/stopwatch.h"
-#include "core/triangle_soup.h"
 #include "core/validation.h"
 #include "map/pair_finish.h"
 
@@ -90,9 +90,7 @@ std::optional<WorkingCopy> WorkingCopy::make(const Mesh& target, const AnchorSet
   DecimatedMesh copy = decimate(target, vertices, locked, decimation);
 
   // The working copy must be what map_pair takes of any input.
-  TriangleSoup soup{"the working copy", {}, triangles_of(copy.mesh), 0};
-  for (VertexHandle v : copy.mesh.vertices()) soup.vertices.push_back(position(copy.mesh, v));
-  const MeshReport report = validate_soup(soup);
+  const MeshReport report = validate_soup(soup_of(copy.mesh, "the working copy"));
   if (!report.usable) {
     if (refusal != nullptr)
       *refusal = "a working copy of " + std::to_string(copy.mesh.n_vertices()) + " vertices was not usable (" +
