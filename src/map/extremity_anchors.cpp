@@ -123,14 +123,13 @@ struct FarthestInCells {
   std::vector<double> end_distance;
 };
 
-FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<int>& matched_tips) {
-  const AnchorVoronoi cells = anchor_voronoi(side.mesh, handles(side.mesh, side.anchors));
-  const double scale = std::sqrt(surface_area(side.mesh));
+FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<int>& matched_tips, double scale) {
+  const AnchorVoronoi& cells = side.found.cells;
   const std::size_t n = side.anchors.size();
   FarthestInCells farthest{std::vector<int>(n, -1), std::vector<double>(n, 0.0), std::vector<int>(n, -1),
                            std::vector<double>(n, 0.0)};
   // In vertex order: ties go to the lower index.
-  for (int v : side.tips) {
+  for (int v : side.found.tips) {
     if (std::find(matched_tips.begin(), matched_tips.end(), v) != matched_tips.end()) continue;
     const int k = cells.cell[v];
     const double d = cells.distance[v] / scale;
@@ -139,7 +138,7 @@ FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<
       farthest.tip_distance[k] = d;
     }
   }
-  for (int v : side.ends) {
+  for (int v : side.found.ends) {
     const int k = cells.cell[v];
     const double d = cells.distance[v] / scale;
     if (farthest.end[k] < 0 || d > farthest.end_distance[k]) {
@@ -154,8 +153,9 @@ FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<
 
 Extremities extremities(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach) {
   const std::vector<double> from_root = anchor_voronoi(mesh, {mesh.vertex_handle(root)}).distance;
-  const std::vector<double> from_anchors = anchor_voronoi(mesh, handles(mesh, anchors)).distance;
   Extremities found;
+  found.cells = anchor_voronoi(mesh, handles(mesh, anchors));
+  const std::vector<double>& from_anchors = found.cells.distance;
   for (VertexHandle v : mesh.vertices()) {
     const double here = from_root[v.idx()];
     if (from_anchors[v.idx()] <= reach) continue;
@@ -213,7 +213,7 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
                                                        const std::vector<ExtremityAnchor>& matched,
                                                        const std::vector<std::string>& taken) {
   std::vector<ExtremityAnchor> by_cell;
-  if (source.tips.empty() && target.tips.empty()) return by_cell;  // a blob stands in only for a tip
+  if (source.found.tips.empty() && target.found.tips.empty()) return by_cell;  // a blob stands in only for a tip
   std::vector<int> matched_source, matched_target;
   std::vector<std::string> names = taken;
   for (const ExtremityAnchor& tip : matched) {
@@ -221,15 +221,15 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
     matched_target.push_back(std::get<AnchorVertex>(tip.specs[1].location).index);
     names.push_back(tip.specs[0].name);
   }
-  const FarthestInCells on_source = farthest_in_cells(source, matched_source);
-  const FarthestInCells on_target = farthest_in_cells(target, matched_target);
+  const double source_scale = std::sqrt(surface_area(source.mesh));
+  const double target_scale = std::sqrt(surface_area(target.mesh));
+  const FarthestInCells on_source = farthest_in_cells(source, matched_source, source_scale);
+  const FarthestInCells on_target = farthest_in_cells(target, matched_target, target_scale);
   const TipMismatch mismatch(source.mesh, target.mesh, map);
   // Whether the first map squeezes template vertex s towards anchor k: its image lies nearer the
   // anchor, relative to the target's size, than kSqueezed times the vertex itself does on the
   // template. Elsewhere the first map has put the protrusion where it belongs and its
   // through-map matches (or none) stand.
-  const double source_scale = std::sqrt(surface_area(source.mesh));
-  const double target_scale = std::sqrt(surface_area(target.mesh));
   const auto squeezed = [&](int s, std::size_t k) {
     const double from_anchor =
         (position(source.mesh, source.mesh.vertex_handle(s)) -
@@ -242,16 +242,17 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
   // there already has a helper (the hand may span the cells of two wrist landmarks), and the
   // farthest tips of a half-matched hand need not be the same finger on both meshes.
   const auto near_matched = [](const TipsAndAnchors& side, const std::vector<int>& matched_tips, std::size_t k,
-                               double distance) {
-    const double scale = std::sqrt(surface_area(side.mesh));
+                               double distance, double scale) {
     const Eigen::Vector3d anchor = position(side.mesh, side.mesh.vertex_handle(side.anchors[k]));
     return std::any_of(matched_tips.begin(), matched_tips.end(), [&](int v) {
       return (position(side.mesh, side.mesh.vertex_handle(v)) - anchor).norm() <= distance * scale;
     });
   };
   for (std::size_t k = 0; k < source.anchors.size(); ++k) {
-    if (near_matched(source, matched_source, k, std::max(on_source.tip_distance[k], on_source.end_distance[k])) ||
-        near_matched(target, matched_target, k, std::max(on_target.tip_distance[k], on_target.end_distance[k])))
+    if (near_matched(source, matched_source, k, std::max(on_source.tip_distance[k], on_source.end_distance[k]),
+                     source_scale) ||
+        near_matched(target, matched_target, k, std::max(on_target.tip_distance[k], on_target.end_distance[k]),
+                     target_scale))
       continue;
     if (on_source.tip[k] < 0 && on_target.tip[k] < 0) continue;
     // A tip on one mesh only: the other's protrusion is a blob (a fist), whose farthest point

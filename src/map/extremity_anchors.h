@@ -16,6 +16,7 @@
 
 #include "core/anchors.h"
 #include "core/mesh.h"
+#include "layout/anchor_voronoi.h"
 
 #include <Eigen/Core>
 
@@ -34,6 +35,9 @@ struct Extremities {
   /// The ends whose distance exceeds that at every vertex `reach` away by half of `reach`: they
   /// end a protrusion at least that long (a finger, a toe), not a bump or a blob (a fist).
   std::vector<int> tips;
+  /// The anchors' geodesic Voronoi cells, whose distances the ends were kept out of the reach of
+  /// (match_extremities_by_cell groups the ends by them).
+  AnchorVoronoi cells;
 };
 
 /// The extremities of `mesh`. \pre root and anchors valid vertices of a connected mesh
@@ -61,11 +65,10 @@ std::vector<ExtremityAnchor> match_extremities(const Mesh& source, const std::ve
                                                const FirstMap& map, const std::vector<std::string>& taken,
                                                double max_mismatch);
 
-/// One mesh's tips and its anchors' vertices, the anchors in the same order on both meshes.
+/// One mesh's extremities and its anchors' vertices, the anchors in the same order on both meshes.
 struct TipsAndAnchors {
   const Mesh& mesh;
-  const std::vector<int>& tips;     ///< Extremities::tips
-  const std::vector<int>& ends;     ///< Extremities::ends
+  const Extremities& found;         ///< extremities(mesh, root, anchors, reach)
   const std::vector<int>& anchors;  ///< vertex of each anchor
   double reach = 0.0;               ///< the tips' reach, as a fraction of sqrt(area)
 };

@@ -549,19 +549,16 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   const auto reach = [&](const Mesh& mesh) { return in.settings.tip_reach * std::sqrt(surface_area(mesh)); };
   const Extremities on_source_ends = extremities(in.source, source_anchors[root], source_anchors, reach(in.source));
   const Extremities on_target_ends = extremities(in.target, target_anchors[root], target_anchors, reach(in.target));
-  const std::vector<int>& source_tips = on_source_ends.tips;
-  const std::vector<int>& target_tips = on_target_ends.tips;
   std::vector<Eigen::Vector3d> images(current.map.remesh_vertices.rows());
   for (int v = 0; v < static_cast<int>(images.size()); ++v) images[v] = current.map.remesh_vertices.row(v).transpose();
   const std::vector<std::array<int, 3>> faces = triangles_of(in.source);
   const FirstMap first{images, faces};
-  std::vector<ExtremityAnchor> tips = match_extremities(in.source, source_tips, in.target, target_tips, first,
-                                                        anchor_names(on_source), in.settings.max_tip_mismatch);
-  for (ExtremityAnchor& tip :
-       match_extremities_by_cell({in.source, source_tips, on_source_ends.ends, source_anchors, in.settings.tip_reach},
-                                 {in.target, target_tips, on_target_ends.ends, target_anchors, in.settings.tip_reach},
-                                 first, tips,
-                                 anchor_names(on_source)))
+  std::vector<ExtremityAnchor> tips =
+      match_extremities(in.source, on_source_ends.tips, in.target, on_target_ends.tips, first,
+                        anchor_names(on_source), in.settings.max_tip_mismatch);
+  for (ExtremityAnchor& tip : match_extremities_by_cell({in.source, on_source_ends, source_anchors, in.settings.tip_reach},
+                                                        {in.target, on_target_ends, target_anchors, in.settings.tip_reach},
+                                                        first, tips, anchor_names(on_source)))
     tips.push_back(std::move(tip));
   if (tips.empty() || !in.budget.allows_another()) return std::nullopt;
   AnchoredMap tipped{{}, current.source_anchors, current.target_anchors};

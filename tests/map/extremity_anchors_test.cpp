@@ -82,7 +82,7 @@ class SqueezedSpike : public ::testing::Test {
 // the +z corner, which the map leaves in place, is matched through the map, not by its cell.
 TEST_F(SqueezedSpike, TheLandmarksCellMatchesTheSqueezedTip) {
   ASSERT_EQ(ends.tips, (std::vector<int>{0, 4}));
-  const TipsAndAnchors side{mesh, ends.tips, ends.ends, anchors, reach};
+  const TipsAndAnchors side{mesh, ends, anchors, reach};
   const std::vector<ExtremityAnchor> through_map =
       match_extremities(mesh, ends.tips, mesh, ends.tips, {images, faces}, {}, 0.1);
   ASSERT_EQ(through_map.size(), 1u);
@@ -104,16 +104,18 @@ TEST_F(SqueezedSpike, TheLandmarksCellMatchesTheSqueezedTip) {
 // Where the target's limb ends in a blob (an end without a tip: a fist), the cell's farthest end
 // stands in for the tip of the template's squeezed spike; without the end, nothing is matched.
 TEST_F(SqueezedSpike, ABlobsEndStandsInForATip) {
-  const TipsAndAnchors spiked{mesh, ends.tips, ends.ends, anchors, reach};
-  const std::vector<int> blob_tips;  // every end seen as a blob's: no tip on this mesh at all
-  const TipsAndAnchors blob{mesh, blob_tips, ends.ends, anchors, reach};
+  const TipsAndAnchors spiked{mesh, ends, anchors, reach};
+  Extremities blob_ends = ends;
+  blob_ends.tips.clear();  // every end seen as a blob's: no tip on this mesh at all
+  const TipsAndAnchors blob{mesh, blob_ends, anchors, reach};
   const std::vector<ExtremityAnchor> by_cell = match_extremities_by_cell(spiked, blob, {images, faces}, {}, {});
   ASSERT_EQ(by_cell.size(), 1u);
   EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[0].location).index, 0);
   EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[1].location).index, 0);
 
-  const std::vector<int> no_end = {4};  // the +z corner's end only
-  const TipsAndAnchors bare{mesh, blob_tips, no_end, anchors, reach};
+  Extremities no_end = blob_ends;
+  no_end.ends = {4};  // the +z corner's end only
+  const TipsAndAnchors bare{mesh, no_end, anchors, reach};
   EXPECT_TRUE(match_extremities_by_cell(spiked, bare, {images, faces}, {}, {}).empty());
 }
 
