@@ -10,10 +10,12 @@
 
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace xparam::bench {
@@ -21,6 +23,22 @@ namespace xparam::bench {
 inline std::filesystem::path data(const std::string& relative) {
   return std::filesystem::path(XPARAM_SOURCE_DIR) / "tests" / "data" / relative;
 }
+
+// A file of this process in the temporary folder (the process id in its name, so concurrent
+// benchmark runs do not meet), removed when this goes.
+struct TemporaryFile {
+  std::filesystem::path path;
+
+  explicit TemporaryFile(const std::string& name)
+      : path(std::filesystem::temp_directory_path() /
+             ("xparam_bench_" + std::to_string(static_cast<long>(::getpid())) + "_" + name)) {}
+  ~TemporaryFile() {
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+  }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+};
 
 // `count` template vertices by Euclidean farthest-point sampling from vertex 0, and for each the
 // nearest target vertex (the two Spot meshes share a frame).

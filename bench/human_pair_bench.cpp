@@ -20,7 +20,6 @@
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -37,7 +36,7 @@ const fs::path kData = fs::path(XPARAM_SOURCE_DIR) / ".." / "shared" / "data";
 
 struct HumanPair50k {
   fs::path template_file = kData / "faust_registrations" / "tr_reg_000.ply";
-  fs::path target_file;  // the refined target, written once per process
+  bench::TemporaryFile target_file{"tr_reg_010_50k.obj"};  // the refined target, written once per process
   LoadedMesh source, target;
   AnchorSet source_anchors, target_anchors;
   std::vector<Eigen::Vector3d> truth;  // per template vertex: its counterpart on the target
@@ -45,10 +44,8 @@ struct HumanPair50k {
   HumanPair50k() {
     const fs::path landmarks = kData / "faust_landmarks" / "smpl_caesar_landmark_indices.json";
     const LoadedMesh registration = load_mesh(kData / "faust_registrations" / "tr_reg_010.ply");
-    target_file = fs::temp_directory_path() /
-                  ("xparam_bench_tr_reg_010_50k_" + std::to_string(static_cast<long>(::getpid())) + ".obj");
     target = evaluate::write_and_load_genus0(
-        evaluate::decimate(subdivide_midpoint(subdivide_midpoint(registration.mesh)), 50000), target_file);
+        evaluate::decimate(subdivide_midpoint(subdivide_midpoint(registration.mesh)), 50000), target_file.path);
     source = load_mesh(template_file);
     evaluate::CarriedLandmarks carried =
         evaluate::landmarks_through_registration(evaluate::read_ids(landmarks), registration.mesh, landmarks, landmarks);
@@ -56,12 +53,6 @@ struct HumanPair50k {
     target_anchors = std::move(carried.target);
     for (VertexHandle v : registration.mesh.vertices()) truth.push_back(position(registration.mesh, v));
   }
-  ~HumanPair50k() {
-    std::error_code ignored;
-    fs::remove(target_file, ignored);
-  }
-  HumanPair50k(const HumanPair50k&) = delete;
-  HumanPair50k& operator=(const HumanPair50k&) = delete;
 };
 
 void BM_HumanPair50k73Landmarks(benchmark::State& state) {
@@ -78,7 +69,7 @@ void BM_HumanPair50k73Landmarks(benchmark::State& state) {
     sum.add_stages(map.seconds);
     sum.total += map.seconds.total;
   }
-  const double floor = evaluate::floor_seconds(in->template_file, in->target_file);
+  const double floor = evaluate::floor_seconds(in->template_file, in->target_file.path);
   const double n = static_cast<double>(state.iterations());
   double gt_error = 0.0;
   for (std::size_t v = 0; v < in->truth.size(); ++v)

@@ -24,7 +24,6 @@
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 #include <tbb/global_control.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -55,7 +54,7 @@ double peak_memory_mb() {
 
 struct LargeWoman {
   fs::path template_file = bench::data("human_man.obj");
-  fs::path target_file;  // the refined target, written once per process
+  bench::TemporaryFile target_file{"woman_1m.ply"};  // the refined target, written once per process
   AnchorSet template_anchors = read_anchors(bench::data("human.anchors.json"));
   AnchorSet target_anchors;            // the same landmarks as vertex ids of the large file
   std::vector<Eigen::Vector3d> truth;  // per template vertex: its counterpart on the target
@@ -78,16 +77,8 @@ struct LargeWoman {
       int& index = std::get<AnchorVertex>(anchor.location).index;
       index = large_vertex[index];
     }
-    target_file = fs::temp_directory_path() /
-                  ("xparam_bench_woman_1m_" + std::to_string(static_cast<long>(::getpid())) + ".ply");
-    write_ply(target_file, large.mesh);
+    write_ply(target_file.path, large.mesh);
   }
-  ~LargeWoman() {
-    std::error_code ignored;
-    fs::remove(target_file, ignored);
-  }
-  LargeWoman(const LargeWoman&) = delete;
-  LargeWoman& operator=(const LargeWoman&) = delete;
 };
 
 void BM_LargeTarget1M(benchmark::State& state) {
@@ -104,7 +95,7 @@ void BM_LargeTarget1M(benchmark::State& state) {
     reset_peak_memory();
     const Clock::time_point start = Clock::now();
     const LoadedMesh source = load_mesh(in->template_file);
-    const LoadedMesh target = load_scan(in->target_file, in->target_anchors, {});
+    const LoadedMesh target = load_scan(in->target_file.path, in->target_anchors, {});
     map = map_pair(source.mesh, in->template_anchors, target.mesh, in->target_anchors, {});
     seconds += std::chrono::duration<double>(Clock::now() - start).count();
     peak = std::max(peak, peak_memory_mb());
@@ -122,7 +113,7 @@ void BM_LargeTarget1M(benchmark::State& state) {
     gt_error /= static_cast<double>(in->truth.size()) * std::sqrt(surface_area(target.mesh));
   }
   reset_peak_memory();
-  const double floor = evaluate::floor_seconds(in->template_file, in->target_file, 1);
+  const double floor = evaluate::floor_seconds(in->template_file, in->target_file.path, 1);
   const double floor_peak = peak_memory_mb();
   const double n = static_cast<double>(state.iterations());
   state.counters["target_V"] = static_cast<double>(target_vertices);

@@ -3,10 +3,10 @@
 // ascii STL of N corner positions crafted so that an FNV-style hash of their bits collides (the
 // welder once hashed that way, and crafted corners welded in quadratic time). Each size is read
 // through read_triangle_soup from a file written beforehand; time per read should grow with N.
+#include "bench_inputs.h"
 #include "io/mesh_reader.h"
 
 #include <benchmark/benchmark.h>
-#include <unistd.h>
 
 #include <bit>
 #include <cmath>
@@ -20,13 +20,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path bench_file(const std::string& name) {
-  return fs::temp_directory_path() / ("xparam_bench_" + std::to_string(static_cast<long>(::getpid())) + "_" + name);
-}
-
 void BM_ReadOnePolygon(benchmark::State& state) {
   const auto corners = static_cast<int>(state.range(0));
-  const fs::path path = bench_file("polygon_" + std::to_string(corners) + ".off");
+  const bench::TemporaryFile file("polygon_" + std::to_string(corners) + ".off");
+  const fs::path& path = file.path;
   {
     std::ofstream off(path);
     off.precision(17);
@@ -38,13 +35,13 @@ void BM_ReadOnePolygon(benchmark::State& state) {
   }
   for (auto _ : state) benchmark::DoNotOptimize(read_triangle_soup(path));
   state.counters["corners"] = corners;
-  fs::remove(path);
 }
 BENCHMARK(BM_ReadOnePolygon)->Arg(100000)->Arg(400000)->Unit(benchmark::kMillisecond);
 
 void BM_ReadCraftedStl(benchmark::State& state) {
   const auto positions = static_cast<int>(state.range(0));
-  const fs::path path = bench_file("crafted_" + std::to_string(positions) + ".stl");
+  const bench::TemporaryFile file("crafted_" + std::to_string(positions) + ".stl");
+  const fs::path& path = file.path;
   {
     // x fixed, y stepping, z chosen so that (bits(x) * P ^ bits(y)) * P ^ bits(z) is constant.
     constexpr std::uint64_t kPrime = 1000003u;
@@ -69,7 +66,6 @@ void BM_ReadCraftedStl(benchmark::State& state) {
   }
   for (auto _ : state) benchmark::DoNotOptimize(read_triangle_soup(path));
   state.counters["positions"] = positions;
-  fs::remove(path);
 }
 BENCHMARK(BM_ReadCraftedStl)->Arg(100000)->Arg(400000)->Unit(benchmark::kMillisecond);
 
