@@ -149,6 +149,49 @@ FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<
   return farthest;
 }
 
+// Tips matched by their distances to the references near them (match_extremities_by_distances):
+// the references lie within kDescriptorRadius sqrt(area) of one of the two tips (a hand's span);
+// a pair is matched below kMaxDescriptorMismatch, and under kDescriptorMargin times the mismatch
+// of either tip's next best. The fingers and toes of the evaluation's human pairs match at
+// 0.02-0.06; a FAUST toe matched at 0.11 folded the foot.
+constexpr double kDescriptorRadius = 0.2;
+constexpr double kMaxDescriptorMismatch = 0.1;
+constexpr double kDescriptorMargin = 0.6;
+
+// Edge-path distances (fractions of sqrt(area)) from `tip` to each of `references`, infinite
+// beyond 1.5 kDescriptorRadius, where neither tip of a pair can have the reference near.
+std::vector<double> reference_distances(const Mesh& mesh, int tip, const std::vector<int>& references, double scale) {
+  std::vector<double> distances(references.size(), std::numeric_limits<double>::infinity());
+  std::vector<std::pair<int, double>> reached = ball(mesh, tip, 1.5 * kDescriptorRadius * scale);
+  std::sort(reached.begin(), reached.end());
+  for (std::size_t r = 0; r < references.size(); ++r) {
+    const auto at = std::lower_bound(reached.begin(), reached.end(), std::pair<int, double>{references[r], -1.0});
+    if (at != reached.end() && at->first == references[r]) distances[r] = at->second / scale;
+  }
+  return distances;
+}
+
+// The mismatch of two tips' reference distances: summed differences over the mean summed
+// distance, over the references within kDescriptorRadius of either tip; infinite with fewer than
+// two such references, with none among the matched tips (index >= first_matched_tip), or with one
+// out of the other tip's reach.
+double descriptor_mismatch(const std::vector<double>& a, const std::vector<double>& b, std::size_t first_matched_tip) {
+  double difference = 0.0;
+  double sum = 0.0;
+  int references = 0;
+  bool matched_tip = false;
+  for (std::size_t r = 0; r < a.size(); ++r) {
+    if (!(std::min(a[r], b[r]) <= kDescriptorRadius)) continue;
+    if (!std::isfinite(a[r] + b[r])) return std::numeric_limits<double>::infinity();
+    difference += std::abs(a[r] - b[r]);
+    sum += 0.5 * (a[r] + b[r]);
+    ++references;
+    matched_tip = matched_tip || r >= first_matched_tip;
+  }
+  if (references < 2 || !matched_tip || !(sum > 0.0)) return std::numeric_limits<double>::infinity();
+  return difference / sum;
+}
+
 }  // namespace
 
 Extremities extremities(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach) {
@@ -268,8 +311,80 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
     if (!(ratio >= 0.5 && ratio <= 2.0) || !squeezed(s, k)) continue;
     by_cell.push_back(
         tip_anchor(s, t, mismatch(s, t, mismatch.preimage(t)), matched.size() + by_cell.size() + 1, names));
+    by_cell.back().matched_by = TipMatching::by_cell;
   }
   return by_cell;
+}
+
+std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors& source, const TipsAndAnchors& target,
+                                                            const FirstMap& map,
+                                                            const std::vector<ExtremityAnchor>& matched,
+                                                            const std::vector<std::string>& taken) {
+  std::vector<ExtremityAnchor> by_distances;
+  std::vector<int> source_references = source.anchors;
+  std::vector<int> target_references = target.anchors;
+  std::vector<std::string> names = taken;
+  for (const ExtremityAnchor& tip : matched) {
+    source_references.push_back(std::get<AnchorVertex>(tip.specs[0].location).index);
+    target_references.push_back(std::get<AnchorVertex>(tip.specs[1].location).index);
+    names.push_back(tip.specs[0].name);
+  }
+  const auto unmatched = [](const std::vector<int>& tips, const std::vector<int>& references) {
+    std::vector<int> left;
+    for (int v : tips)
+      if (std::find(references.begin(), references.end(), v) == references.end()) left.push_back(v);
+    return left;
+  };
+  std::vector<int> source_tips = unmatched(source.found.tips, source_references);
+  std::vector<int> target_tips = unmatched(target.found.tips, target_references);
+  if (matched.empty() || source_tips.empty() || target_tips.empty()) return by_distances;
+  const std::size_t first_matched_tip = source.anchors.size();
+  const double source_scale = std::sqrt(surface_area(source.mesh));
+  const double target_scale = std::sqrt(surface_area(target.mesh));
+  const TipMismatch mismatch(source.mesh, target.mesh, map);
+  for (bool found = true; found && !source_tips.empty() && !target_tips.empty();) {
+    found = false;
+    const std::size_t n_source = source_tips.size();
+    const std::size_t n_target = target_tips.size();
+    std::vector<std::vector<double>> target_distances;
+    for (int t : target_tips)
+      target_distances.push_back(reference_distances(target.mesh, t, target_references, target_scale));
+    std::vector<double> cost(n_source * n_target);
+    for (std::size_t s = 0; s < n_source; ++s) {
+      const std::vector<double> distances =
+          reference_distances(source.mesh, source_tips[s], source_references, source_scale);
+      for (std::size_t t = 0; t < n_target; ++t)
+        cost[s * n_target + t] = descriptor_mismatch(distances, target_distances[t], first_matched_tip);
+    }
+    // Whether `cost_of(best)` is below the matching bound and clearly below every other choice's.
+    const auto clear_best = [](std::size_t n, std::size_t best, const auto& cost_of) {
+      for (std::size_t k = 0; k < n; ++k) {
+        if (k != best && !(cost_of(best) < kDescriptorMargin * cost_of(k))) return false;
+      }
+      return cost_of(best) < kMaxDescriptorMismatch;
+    };
+    std::vector<std::pair<int, int>> pairs;
+    for (std::size_t s = 0; s < n_source; ++s) {
+      const auto of_target = [&](std::size_t t) { return cost[s * n_target + t]; };
+      std::size_t t = 0;
+      for (std::size_t k = 1; k < n_target; ++k)
+        if (of_target(k) < of_target(t)) t = k;
+      const auto of_source = [&](std::size_t k) { return cost[k * n_target + t]; };
+      if (!clear_best(n_target, t, of_target) || !clear_best(n_source, s, of_source)) continue;
+      pairs.push_back({source_tips[s], target_tips[t]});
+    }
+    for (const auto& [s, t] : pairs) {
+      by_distances.push_back(tip_anchor(s, t, mismatch(s, t, mismatch.preimage(t)),
+                                        matched.size() + by_distances.size() + 1, names));
+      by_distances.back().matched_by = TipMatching::by_distances;
+      source_references.push_back(s);
+      target_references.push_back(t);
+      found = true;
+    }
+    source_tips = unmatched(source_tips, source_references);
+    target_tips = unmatched(target_tips, target_references);
+  }
+  return by_distances;
 }
 
 }  // namespace xparam

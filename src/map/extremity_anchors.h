@@ -43,10 +43,18 @@ struct Extremities {
 /// The extremities of `mesh`. \pre root and anchors valid vertices of a connected mesh
 Extremities extremities(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach);
 
+/// How a tip pair was matched.
+enum class TipMatching {
+  through_map,   ///< match_extremities: each other's nearest through the first map
+  by_cell,       ///< match_extremities_by_cell: the farthest tips in one landmark's cell
+  by_distances,  ///< match_extremities_by_distances: distances to the landmarks and matched tips near
+};
+
 /// A tip matched on both meshes.
 struct ExtremityAnchor {
   std::array<AnchorSpec, 2> specs;  ///< [0] on the template input mesh, [1] on the target's (vertex anchors)
   double mismatch = 0.0;  ///< how far the first map put each tip from the other, summed, as a fraction of sqrt(area) of each mesh
+  TipMatching matched_by = TipMatching::through_map;
 };
 
 /// The map the tips are matched through: template vertex i lies at `images[i]` on the target;
@@ -84,5 +92,20 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
                                                        const FirstMap& map,
                                                        const std::vector<ExtremityAnchor>& matched,
                                                        const std::vector<std::string>& taken);
+
+/// Tips still unmatched after `matched` on a limb where a tip is matched (a hand whose thumb is
+/// matched and whose four fingers the first map squeezed into the palm), matched by their edge-path
+/// distances to the anchors and matched tips near them: unlike positions through the first map,
+/// these hardly change with the pose, and a hand's matched tips tell its fingers apart. The
+/// references of a tip pair are those within 0.2 sqrt(area) of either tip, at least two of them,
+/// one a matched tip; the pair's mismatch is the sum of the differences of the two tips' distances
+/// to them over the mean sum of those distances. Matched when each tip is the other's least
+/// mismatched, below 0.1 and under 0.6 times the mismatch of either tip's next best; each match
+/// joins the references and the rest are matched again, until none is. Mismatch and names as in
+/// match_extremities_by_cell.
+std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors& source, const TipsAndAnchors& target,
+                                                            const FirstMap& map,
+                                                            const std::vector<ExtremityAnchor>& matched,
+                                                            const std::vector<std::string>& taken);
 
 }  // namespace xparam

@@ -520,6 +520,31 @@ bool better_with_tips(const PairMapping& other, const PairMapping& current) {
          keeps_faces_and_area(other, current);
 }
 
+// A map through `current`'s anchors plus `tips`, when it is better than `current`; nothing
+// otherwise, or when there are no tips or no map is left.
+std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, const AnchoredMap& current,
+                                                      std::vector<ExtremityAnchor> tips, PairSeconds& seconds) {
+  if (tips.empty() || !in.budget.allows_another()) return std::nullopt;
+  AnchoredMap tipped{{}, current.source_anchors, current.target_anchors};
+  for (const ExtremityAnchor& tip : tips) {
+    tipped.source_anchors.anchors.push_back(tip.specs[0]);
+    tipped.target_anchors.anchors.push_back(tip.specs[1]);
+  }
+  if (in.on_stage) in.on_stage("mapping again with " + std::to_string(tips.size()) + " anchors at protrusion tips");
+  PairSettings settings = in.settings;
+  const double slack = kTipSlack * in.settings.tip_reach * std::sqrt(surface_area(in.target));
+  for (const ExtremityAnchor& tip : tips) settings.anchor_slack_by_name[tip.specs[0].name] = slack;
+  std::optional<PairMapping> trial = map_if_possible(in.source, tipped.source_anchors, in.target,
+                                                     tipped.target_anchors, in.curves, settings, in.budget,
+                                                     in.on_stage);
+  if (!trial) return std::nullopt;
+  seconds.add_stages(trial->seconds);
+  if (!better_with_tips(*trial, current.map)) return std::nullopt;
+  tipped.map = std::move(*trial);
+  tipped.map.extremity_anchors = std::move(tips);
+  return tipped;
+}
+
 // A map through `current`'s anchors plus helper anchors at the tips of unanchored protrusions
 // matched through it (PairSettings::extremity_anchors), when it is better; nothing otherwise.
 std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const AnchoredMap& current,
@@ -556,28 +581,22 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   std::vector<ExtremityAnchor> tips =
       match_extremities(in.source, on_source_ends.tips, in.target, on_target_ends.tips, first,
                         anchor_names(on_source), in.settings.max_tip_mismatch);
-  for (ExtremityAnchor& tip : match_extremities_by_cell({in.source, on_source_ends, source_anchors, in.settings.tip_reach},
-                                                        {in.target, on_target_ends, target_anchors, in.settings.tip_reach},
-                                                        first, tips, anchor_names(on_source)))
+  const TipsAndAnchors source_side{in.source, on_source_ends, source_anchors, in.settings.tip_reach};
+  const TipsAndAnchors target_side{in.target, on_target_ends, target_anchors, in.settings.tip_reach};
+  for (ExtremityAnchor& tip : match_extremities_by_cell(source_side, target_side, first, tips, anchor_names(on_source)))
     tips.push_back(std::move(tip));
-  if (tips.empty() || !in.budget.allows_another()) return std::nullopt;
-  AnchoredMap tipped{{}, current.source_anchors, current.target_anchors};
-  for (const ExtremityAnchor& tip : tips) {
-    tipped.source_anchors.anchors.push_back(tip.specs[0]);
-    tipped.target_anchors.anchors.push_back(tip.specs[1]);
+  for (ExtremityAnchor& tip :
+       match_extremities_by_distances(source_side, target_side, first, tips, anchor_names(on_source)))
+    tips.push_back(std::move(tip));
+  std::optional<AnchoredMap> tipped = map_with_extremity_anchors(in, current, tips, seconds);
+  // The tips matched by distances rest on the others: a doubtful match through the first map (a
+  // little finger taken for the thumb) makes them name the rest of the hand wrongly, and the
+  // hand tangles. Then once more without them.
+  const auto by_distances = [](const ExtremityAnchor& tip) { return tip.matched_by == TipMatching::by_distances; };
+  if (!tipped && std::any_of(tips.begin(), tips.end(), by_distances)) {
+    tips.erase(std::remove_if(tips.begin(), tips.end(), by_distances), tips.end());
+    tipped = map_with_extremity_anchors(in, current, tips, seconds);
   }
-  if (in.on_stage) in.on_stage("mapping again with " + std::to_string(tips.size()) + " anchors at protrusion tips");
-  PairSettings settings = in.settings;
-  const double slack = kTipSlack * in.settings.tip_reach * std::sqrt(surface_area(in.target));
-  for (const ExtremityAnchor& tip : tips) settings.anchor_slack_by_name[tip.specs[0].name] = slack;
-  std::optional<PairMapping> trial = map_if_possible(in.source, tipped.source_anchors, in.target,
-                                                     tipped.target_anchors, in.curves, settings, in.budget,
-                                                     in.on_stage);
-  if (!trial) return std::nullopt;
-  seconds.add_stages(trial->seconds);
-  if (!better_with_tips(*trial, current.map)) return std::nullopt;
-  tipped.map = std::move(*trial);
-  tipped.map.extremity_anchors = std::move(tips);
   return tipped;
 }
 

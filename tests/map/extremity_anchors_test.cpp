@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <variant>
 
@@ -117,6 +119,80 @@ TEST_F(SqueezedSpike, ABlobsEndStandsInForATip) {
   no_end.ends = {4};  // the +z corner's end only
   const TipsAndAnchors bare{mesh, no_end, anchors, reach};
   EXPECT_TRUE(match_extremities_by_cell(spiked, bare, {images, faces}, {}, {}).empty());
+}
+
+// A hand on one face of the octahedron (sqrt(area) 2.63, so tips 0.53 apart are near): the +x
+// corner a matched tip (the thumb), a landmark at the wrist, and three unmatched tips. The target
+// is the same mesh turned and twice the size; the first map draws every vertex to one point, so
+// only the distances can match the tips.
+class HandOfTips : public ::testing::Test {
+ protected:
+  HandOfTips() : mesh(test::subdivided_octahedron(12)), target(mesh), faces(triangles_of(mesh)) {
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    for (VertexHandle v : target.vertices()) target.set_point(v, to_point(2.0 * (turn * position(mesh, v))));
+    images.assign(mesh.n_vertices(), Eigen::Vector3d::Zero());
+    thumb.specs[0] = {"tip 1", AnchorVertex{0}, "", 0};
+    thumb.specs[1] = {"tip 1", AnchorVertex{0}, "", 0};
+  }
+
+  int at(double x, double y, double z) const { return test::vertex_at(mesh, Eigen::Vector3d(x, y, z)).idx(); }
+
+  // Template tip -> target tip of each match, in the order made.
+  static std::vector<std::pair<int, int>> pairs(const std::vector<ExtremityAnchor>& matched) {
+    std::vector<std::pair<int, int>> result;
+    for (const ExtremityAnchor& tip : matched)
+      result.push_back({std::get<AnchorVertex>(tip.specs[0].location).index,
+                        std::get<AnchorVertex>(tip.specs[1].location).index});
+    return result;
+  }
+
+  const Mesh mesh;
+  Mesh target;
+  const std::vector<std::array<int, 3>> faces;
+  std::vector<Eigen::Vector3d> images;
+  ExtremityAnchor thumb;
+};
+
+// Tip a lies 0.35 from the thumb and from the wrist landmark, tip b 0.24 and 0.42; tip d 0.35
+// from the wrist and from a but 0.71 from the thumb, so it has a matched tip near only once a is
+// matched: each is matched with itself, d in the second round.
+TEST_F(HandOfTips, AreMatchedByTheirDistancesToTheMatchedTipsAndLandmarks) {
+  const int a = at(0.75, 0.0, 0.25), b = at(10.0 / 12, 2.0 / 12, 0.0), d = at(0.5, 0.0, 0.5);
+  Extremities on_source, on_target;
+  on_source.tips = {a, b, d};
+  on_target.tips = {d, b, a};
+  const std::vector<int> wrist = {at(0.5, 0.25, 0.25)};
+  const std::vector<ExtremityAnchor> matched =
+      match_extremities_by_distances({mesh, on_source, wrist, 0.1}, {target, on_target, wrist, 0.1},
+                                     {images, faces}, {thumb}, {"tip 2"});
+  EXPECT_EQ(pairs(matched), (std::vector<std::pair<int, int>>{{a, a}, {b, b}, {d, d}}));
+  ASSERT_EQ(matched.size(), 3u);
+  EXPECT_EQ(matched[0].specs[0].name, "tip 2'");
+  EXPECT_EQ(matched[1].specs[1].name, "tip 3");
+
+  EXPECT_EQ(matched[2].matched_by, TipMatching::by_distances);
+
+  // Without a matched tip nothing tells the fingers apart.
+  EXPECT_TRUE(match_extremities_by_distances({mesh, on_source, wrist, 0.1}, {target, on_target, wrist, 0.1},
+                                             {images, faces}, {}, {})
+                  .empty());
+}
+
+// Tips a and b mirror each other across the plane through the thumb and the wrist landmark: their
+// distances to both are the same, and neither is matched; a second landmark off that plane tells
+// them apart.
+TEST_F(HandOfTips, MirrorTipsAreLeftUnmatchedUntilALandmarkTellsThemApart) {
+  const int a = at(0.75, 0.0, 0.25), b = at(0.75, 0.25, 0.0);
+  Extremities tips;
+  tips.tips = {a, b};
+  const std::vector<int> on_axis = {at(0.5, 0.25, 0.25)};
+  EXPECT_TRUE(match_extremities_by_distances({mesh, tips, on_axis, 0.1}, {target, tips, on_axis, 0.1},
+                                             {images, faces}, {thumb}, {})
+                  .empty());
+  const std::vector<int> off_axis = {on_axis[0], at(0.5, 0.5, 0.0)};
+  EXPECT_EQ(pairs(match_extremities_by_distances({mesh, tips, off_axis, 0.1}, {target, tips, off_axis, 0.1},
+                                                 {images, faces}, {thumb}, {})),
+            (std::vector<std::pair<int, int>>{{a, a}, {b, b}}));
 }
 
 }  // namespace
