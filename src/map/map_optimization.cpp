@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace xparam {
@@ -102,6 +103,9 @@ constexpr int kUntanglePatience = 15;
 // The barrier phase goes on while a sweep lowers the coverage energy by this fraction of it.
 constexpr double kCoverageTolerance = 0.01;
 
+// Passes of open_remaining_folds, at most.
+constexpr int kFoldPasses = 3;
+
 class MapOptimizer {
  public:
   MapOptimizer(const Mesh& source, const std::vector<std::array<int, 3>>& faces, const Mesh& target,
@@ -177,6 +181,7 @@ class MapOptimizer {
       }
       if (converged) break;
     }
+    if (open_remaining_folds()) result.energy.push_back(total_energy());
     result.flipped_after = count_folded();
     result.distortion_after = mean_unfolded_energy();
     for (std::size_t v = 0; v < locations_.size(); ++v) {
@@ -227,6 +232,94 @@ class MapOptimizer {
       normals_[v] = reference_.interpolated_normal(locations_[v]);
     }
     return sweeps;
+  }
+
+  // Folds the barrier phase leaves where no descent step of one vertex opens them (a tiny face
+  // across a sharp crease of the target, an ear's rim): each free corner of a face folded by the
+  // remesh's own count or the strict one, in vertex order, tries the target point nearest to the
+  // centroid of its neighbours' images, then the points halfway and a quarter of the way there.
+  // A try is taken when it leaves fewer of the corner's faces folded by those two counts
+  // together, none more by either or against the optimizer's second reference, and lowers their
+  // energy. Passes repeat while one opens a fold, at most kFoldPasses. Returns whether any corner
+  // moved.
+  bool open_remaining_folds() {
+    std::optional<ClosestPointIndex> on_target;
+    bool any = false;
+    for (int pass = 0; pass < kFoldPasses; ++pass) {
+      std::vector<int> corners;
+      for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+        if (!face_value(f, reference_normal(f), -1, {}).against_own && !strictly_folded(f, -1, {}, {})) continue;
+        for (int v : faces_[f])
+          if (is_free(v)) corners.push_back(v);
+      }
+      std::sort(corners.begin(), corners.end());
+      corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+      if (corners.empty()) break;
+      if (!on_target) on_target.emplace(target_);
+      bool opened = false;
+      for (int v : corners) opened = move_towards_ring_centroid(v, *on_target) || opened;
+      if (!opened) break;
+      any = true;
+    }
+    return any;
+  }
+
+  // Whether face f is folded by the strict count (RemeshQualityResult::strictly_folded_faces) or
+  // collapsed, with `moved` (if >= 0) at `at`, `at_position` in 3-D.
+  bool strictly_folded(int f, int moved, const SurfacePoint& at, const Eigen::Vector3d& at_position) const {
+    const auto& t = faces_[f];
+    const auto location = [&](int v) -> const SurfacePoint* { return v == moved ? &at : &locations_[v]; };
+    const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at_position : positions_[v]; };
+    const Eigen::Vector3d normal = (point(t[1]) - point(t[0])).cross(point(t[2]) - point(t[0]));
+    if (!(normal.squaredNorm() > 0.0)) return true;
+    const int shared = reference_.shared_face({location(t[0]), location(t[1]), location(t[2])});
+    return std::all_of(t.begin(), t.end(), [&](int v) {
+      return normal.dot(reference_.face_normal(shared >= 0 ? shared : location(v)->face)) < 0.0;
+    });
+  }
+
+  // One try of open_remaining_folds for vertex v.
+  bool move_towards_ring_centroid(int v, const ClosestPointIndex& on_target) {
+    const std::vector<Incidence>& ring = incidences_[v];
+    std::vector<FaceReferences> references(ring.size());
+    for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face);
+    const FaceValue before = ring_value(v, references, positions_[v]);
+    const auto strict_in_ring = [&](const SurfacePoint& at, const Eigen::Vector3d& at_position) {
+      int folded = 0;
+      for (const Incidence& in : ring) folded += strictly_folded(in.face, v, at, at_position);
+      return folded;
+    };
+    const int strict_before = strict_in_ring(locations_[v], positions_[v]);
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    int neighbours = 0;
+    for (const Incidence& in : ring) {
+      for (int u : faces_[in.face]) {
+        if (u == v) continue;
+        centroid += positions_[u];
+        ++neighbours;
+      }
+    }
+    if (neighbours == 0) return false;
+    centroid /= neighbours;
+    std::vector<FaceReferences> moved(ring.size());
+    for (const double fraction : {1.0, 0.5, 0.25}) {
+      const SurfacePoint there = on_target.closest(positions_[v] + fraction * (centroid - positions_[v])).location;
+      const Eigen::Vector3d y = position(target_, there);
+      if (!within_slack(v, y)) continue;
+      const Eigen::Vector3d there_normal = reference_.interpolated_normal(there);
+      for (std::size_t k = 0; k < ring.size(); ++k) moved[k] = reference_normal(ring[k].face, v, there, there_normal);
+      const FaceValue after = ring_value(v, moved, y);
+      const int strict_after = strict_in_ring(there, y);
+      if (after.against_own > before.against_own || after.against_corners > before.against_corners ||
+          strict_after > strict_before ||
+          after.against_own + strict_after >= before.against_own + strict_before || !(after.energy < before.energy))
+        continue;
+      locations_[v] = there;
+      positions_[v] = y;
+      normals_[v] = there_normal;
+      return true;
+    }
+    return false;
   }
 
   // One sweep over the free vertices that may move (they or a neighbour moved in the last

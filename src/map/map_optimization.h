@@ -32,6 +32,11 @@
 /// backtracking line search that takes only steps that lower its faces' energy. Vertices are
 /// coloured so no two of one colour share a face; a colour's vertices move in parallel, the
 /// colours in order, so the result is the same at any thread count.
+///
+/// A fold the sweeps leave (a tiny face across a sharp crease of the target, where no descent
+/// step of one vertex opens it) is then opened where it can be: a corner moves to the target
+/// point nearest its neighbours' centroid, or part of the way, when that leaves its faces folded
+/// less (the remesh's own count and the strict one), no more by either, and lowers their energy.
 
 #include "core/mesh.h"
 #include "core/surface_point.h"
@@ -70,7 +75,8 @@ struct MapOptimizationResult {
   std::vector<Eigen::Vector3d> positions;  ///< the same in 3-D
   /// The energy the barrier phase lowers (a sum over faces of area share times E_f, a folded
   /// face counting kFoldedFaceEnergy = 1e6, plus the coverage term), at its start, after each of
-  /// its sweeps, and again after each refresh of the coverage pulls: never rising but at those.
+  /// its sweeps, and again after each refresh of the coverage pulls: never rising but at those;
+  /// one more entry, lower, when folds were opened after the sweeps.
   std::vector<double> energy;
   std::vector<int> refreshed;  ///< indices into `energy` measured right after a refresh of the coverage pulls
   double distortion_before = 0.0;  ///< mean E_f (eps = 0) per template area over the faces that do not fold, at the start

@@ -222,6 +222,30 @@ TEST(MapOptimization, UnfoldsAStartThatFolds) {
   EXPECT_LT(pair.mean_error(result.positions), 0.05 * pair.mean_edge);
 }
 
+// Without a single sweep, the folds one thrown image makes are opened by moving it to the
+// target point nearest its neighbours' centroid (what opens a fold on a sharp crease, where no
+// descent step does), and the energy falls.
+TEST(MapOptimization, AFoldLeftAfterTheSweepsIsOpenedTowardsItsRingsCentroid) {
+  SimilarityCase pair(0.0);
+  const int thrown = 333;
+  const Eigen::Vector3d normal =
+      to_eigen(pair.target.calc_face_normal(pair.target.face_handle(pair.truth[thrown].face)));
+  pair.start[thrown] =
+      walk_on_surface(pair.target, pair.truth[thrown], 2.5 * pair.mean_edge * normal.unitOrthogonal()).value();
+  ASSERT_GT(folded(pair.faces, pair.start, pair.target), 0);
+  MapOptimizationSettings no_sweeps;
+  no_sweeps.max_sweeps = 0;
+  const MapOptimizationResult result =
+      optimize_map(pair.source, pair.faces, pair.target, pair.start, pair.pinned, no_sweeps);
+  EXPECT_EQ(result.sweeps, 0);
+  EXPECT_GT(result.flipped_before, 0);
+  EXPECT_EQ(result.flipped_after, 0);
+  EXPECT_EQ(folded(pair.faces, result.locations, pair.target), 0);
+  ASSERT_EQ(result.energy.size(), 2u);
+  EXPECT_LT(result.energy.back(), result.energy.front());
+  EXPECT_LT((result.positions[thrown] - position(pair.target, pair.truth[thrown])).norm(), pair.mean_edge);
+}
+
 TEST(MapOptimization, RefusesImagesOfTheWrongSize) {
   const SimilarityCase pair(0.0);
   std::vector<SurfacePoint> fewer = pair.start;
