@@ -241,6 +241,7 @@ class Relaxation {
     // centroid last time is tried first; the grid is built only when one moved out of it.
     std::optional<PointLocator> images;
     holder_.resize(metrics_.metric.size(), -1);
+    centroid_holder_.resize(n_faces, -1);
     for (size_t t = 0; t < metrics_.metric.size(); ++t) {
       if (metrics_.uv_area[t] <= 0.0) continue;
       int& f = holder_[t];
@@ -258,7 +259,11 @@ class Relaxation {
       const double uncovered = image_area - covered[f];
       if (uncovered > 0.0) {
         const Eigen::Vector2d centroid = (uv[t[0]] + uv[t[1]] + uv[t[2]]) / 3.0;
-        sum[f] += uncovered * metrics_.metric[target_.locator->locate(centroid).triangle];
+        // The same cache for the target triangle under each image triangle's centroid.
+        int& under = centroid_holder_[f];
+        if (under < 0 || !strictly_inside(centroid, *target_.uv, target_.patch->triangles[under]))
+          under = target_.locator->locate(centroid).triangle;
+        sum[f] += uncovered * metrics_.metric[under];
         covered[f] += uncovered;
       }
       averaged[f] = sum[f] / covered[f];
@@ -299,6 +304,8 @@ class Relaxation {
   // Per target parameter triangle: the image triangle that held its centroid at the last
   // averaged_metrics call (-1: none yet); a cache, hence mutable.
   mutable std::vector<int> holder_;
+  // Per image triangle: the target parameter triangle that held its centroid at the last call.
+  mutable std::vector<int> centroid_holder_;
   int free_count_ = 0;
 };
 
