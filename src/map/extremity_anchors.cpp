@@ -192,6 +192,49 @@ double descriptor_mismatch(const std::vector<double>& a, const std::vector<doubl
   return difference / sum;
 }
 
+// One mesh's side of match_extremities_by_distances.
+struct DistanceSide {
+  const Mesh& mesh;
+  double scale = 1.0;           // sqrt(area)
+  std::vector<int> references;  // the anchors' vertices, then the matched tips'
+  std::vector<int> tips;        // the tips not matched yet
+};
+
+// One round of match_extremities_by_distances: the (template, target) tip pairs whose mismatch is
+// below kMaxDescriptorMismatch and under kDescriptorMargin times every other choice of either tip,
+// in template tip order.
+std::vector<std::pair<int, int>> clear_distance_matches(const DistanceSide& source, const DistanceSide& target,
+                                                        std::size_t first_matched_tip) {
+  const std::size_t n_source = source.tips.size();
+  const std::size_t n_target = target.tips.size();
+  std::vector<std::vector<double>> target_distances;
+  for (int t : target.tips)
+    target_distances.push_back(reference_distances(target.mesh, t, target.references, target.scale));
+  std::vector<double> cost(n_source * n_target);
+  for (std::size_t s = 0; s < n_source; ++s) {
+    const std::vector<double> distances = reference_distances(source.mesh, source.tips[s], source.references, source.scale);
+    for (std::size_t t = 0; t < n_target; ++t)
+      cost[s * n_target + t] = descriptor_mismatch(distances, target_distances[t], first_matched_tip);
+  }
+  const auto clear_best = [](std::size_t n, std::size_t best, const auto& cost_of) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if (k != best && !(cost_of(best) < kDescriptorMargin * cost_of(k))) return false;
+    }
+    return cost_of(best) < kMaxDescriptorMismatch;
+  };
+  std::vector<std::pair<int, int>> pairs;
+  for (std::size_t s = 0; s < n_source; ++s) {
+    const auto of_target = [&](std::size_t t) { return cost[s * n_target + t]; };
+    std::size_t t = 0;
+    for (std::size_t k = 1; k < n_target; ++k)
+      if (of_target(k) < of_target(t)) t = k;
+    const auto of_source = [&](std::size_t k) { return cost[k * n_target + t]; };
+    if (clear_best(n_target, t, of_target) && clear_best(n_source, s, of_source))
+      pairs.push_back({source.tips[s], target.tips[t]});
+  }
+  return pairs;
+}
+
 }  // namespace
 
 Extremities extremities(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach) {
@@ -321,12 +364,13 @@ std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors
                                                             const std::vector<ExtremityAnchor>& matched,
                                                             const std::vector<std::string>& taken) {
   std::vector<ExtremityAnchor> by_distances;
-  std::vector<int> source_references = source.anchors;
-  std::vector<int> target_references = target.anchors;
+  if (matched.empty()) return by_distances;
+  DistanceSide on_source{source.mesh, std::sqrt(surface_area(source.mesh)), source.anchors, {}};
+  DistanceSide on_target{target.mesh, std::sqrt(surface_area(target.mesh)), target.anchors, {}};
   std::vector<std::string> names = taken;
   for (const ExtremityAnchor& tip : matched) {
-    source_references.push_back(std::get<AnchorVertex>(tip.specs[0].location).index);
-    target_references.push_back(std::get<AnchorVertex>(tip.specs[1].location).index);
+    on_source.references.push_back(std::get<AnchorVertex>(tip.specs[0].location).index);
+    on_target.references.push_back(std::get<AnchorVertex>(tip.specs[1].location).index);
     names.push_back(tip.specs[0].name);
   }
   const auto unmatched = [](const std::vector<int>& tips, const std::vector<int>& references) {
@@ -335,54 +379,21 @@ std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors
       if (std::find(references.begin(), references.end(), v) == references.end()) left.push_back(v);
     return left;
   };
-  std::vector<int> source_tips = unmatched(source.found.tips, source_references);
-  std::vector<int> target_tips = unmatched(target.found.tips, target_references);
-  if (matched.empty() || source_tips.empty() || target_tips.empty()) return by_distances;
-  const std::size_t first_matched_tip = source.anchors.size();
-  const double source_scale = std::sqrt(surface_area(source.mesh));
-  const double target_scale = std::sqrt(surface_area(target.mesh));
+  on_source.tips = unmatched(source.found.tips, on_source.references);
+  on_target.tips = unmatched(target.found.tips, on_target.references);
   const TipMismatch mismatch(source.mesh, target.mesh, map);
-  for (bool found = true; found && !source_tips.empty() && !target_tips.empty();) {
-    found = false;
-    const std::size_t n_source = source_tips.size();
-    const std::size_t n_target = target_tips.size();
-    std::vector<std::vector<double>> target_distances;
-    for (int t : target_tips)
-      target_distances.push_back(reference_distances(target.mesh, t, target_references, target_scale));
-    std::vector<double> cost(n_source * n_target);
-    for (std::size_t s = 0; s < n_source; ++s) {
-      const std::vector<double> distances =
-          reference_distances(source.mesh, source_tips[s], source_references, source_scale);
-      for (std::size_t t = 0; t < n_target; ++t)
-        cost[s * n_target + t] = descriptor_mismatch(distances, target_distances[t], first_matched_tip);
-    }
-    // Whether `cost_of(best)` is below the matching bound and clearly below every other choice's.
-    const auto clear_best = [](std::size_t n, std::size_t best, const auto& cost_of) {
-      for (std::size_t k = 0; k < n; ++k) {
-        if (k != best && !(cost_of(best) < kDescriptorMargin * cost_of(k))) return false;
-      }
-      return cost_of(best) < kMaxDescriptorMismatch;
-    };
-    std::vector<std::pair<int, int>> pairs;
-    for (std::size_t s = 0; s < n_source; ++s) {
-      const auto of_target = [&](std::size_t t) { return cost[s * n_target + t]; };
-      std::size_t t = 0;
-      for (std::size_t k = 1; k < n_target; ++k)
-        if (of_target(k) < of_target(t)) t = k;
-      const auto of_source = [&](std::size_t k) { return cost[k * n_target + t]; };
-      if (!clear_best(n_target, t, of_target) || !clear_best(n_source, s, of_source)) continue;
-      pairs.push_back({source_tips[s], target_tips[t]});
-    }
+  while (!on_source.tips.empty() && !on_target.tips.empty()) {
+    const std::vector<std::pair<int, int>> pairs = clear_distance_matches(on_source, on_target, source.anchors.size());
+    if (pairs.empty()) break;
     for (const auto& [s, t] : pairs) {
       by_distances.push_back(tip_anchor(s, t, mismatch(s, t, mismatch.preimage(t)),
                                         matched.size() + by_distances.size() + 1, names));
       by_distances.back().matched_by = TipMatching::by_distances;
-      source_references.push_back(s);
-      target_references.push_back(t);
-      found = true;
+      on_source.references.push_back(s);
+      on_target.references.push_back(t);
     }
-    source_tips = unmatched(source_tips, source_references);
-    target_tips = unmatched(target_tips, target_references);
+    on_source.tips = unmatched(on_source.tips, on_source.references);
+    on_target.tips = unmatched(on_target.tips, on_target.references);
   }
   return by_distances;
 }
