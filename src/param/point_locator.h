@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace xparam {
@@ -46,6 +47,8 @@ class PointLocator {
 
  private:
   void test_cell(int cx, int cy, const Eigen::Vector2d& p, PointLocation& best) const;
+  /// The answer when a triangle of cell (cx, cy) holds p by its barycentrics; nothing otherwise.
+  std::optional<PointLocation> locate_inside(const Eigen::Vector2d& p, int cx, int cy) const;
 
   std::vector<Eigen::Vector2d> uv_;
   std::vector<std::array<int, 3>> triangles_;
