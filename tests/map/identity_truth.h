@@ -17,16 +17,18 @@ struct TruthDistance {
   double max = 0.0;
 };
 
+// Distance (target units) from the image of template vertex v to target vertex truth[v].
+inline double truth_miss(const PairMapping& map, const Mesh& target, const std::vector<int>& truth, int v) {
+  return (map.remesh_vertices.row(v).transpose() - position(target, target.vertex_handle(truth.at(v)))).norm();
+}
+
 // Distances from the image of template vertex i to target vertex truth[i] (#template vertices).
 inline TruthDistance distance_to_truth(const PairMapping& map, const Mesh& target,
                                        const std::vector<int>& truth) {
   TruthDistance distance;
   const double diagonal = bounding_box_diagonal(target);
   for (int v = 0; v < map.remesh_vertices.rows(); ++v) {
-    const double error =
-        (map.remesh_vertices.row(v).transpose() - position(target, target.vertex_handle(truth.at(v))))
-            .norm() /
-        diagonal;
+    const double error = truth_miss(map, target, truth, v) / diagonal;
     distance.mean += error;
     distance.max = std::max(distance.max, error);
   }
