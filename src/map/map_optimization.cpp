@@ -271,11 +271,8 @@ class MapOptimizer {
     const auto location = [&](int v) -> const SurfacePoint* { return v == moved ? &at : &locations_[v]; };
     const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at_position : positions_[v]; };
     const Eigen::Vector3d normal = (point(t[1]) - point(t[0])).cross(point(t[2]) - point(t[0]));
-    if (!(normal.squaredNorm() > 0.0)) return true;
-    const int shared = reference_.shared_face({location(t[0]), location(t[1]), location(t[2])});
-    return std::all_of(t.begin(), t.end(), [&](int v) {
-      return normal.dot(reference_.face_normal(shared >= 0 ? shared : location(v)->face)) < 0.0;
-    });
+    return !(normal.squaredNorm() > 0.0) ||
+           reference_.opposes_every_corner(normal, {location(t[0]), location(t[1]), location(t[2])});
   }
 
   // One try of open_remaining_folds for vertex v.

@@ -124,6 +124,14 @@ int RemeshReference::shared_face(const std::array<const SurfacePoint*, 3>& corne
   return common_face(*target_, corners);
 }
 
+bool RemeshReference::opposes_every_corner(const Eigen::Vector3d& normal,
+                                           const std::array<const SurfacePoint*, 3>& corners) const {
+  const int shared = common_face(*target_, corners);
+  return std::all_of(corners.begin(), corners.end(), [&](const SurfacePoint* corner) {
+    return normal.dot(face_normals_[shared >= 0 ? shared : corner->face]) < 0.0;
+  });
+}
+
 Eigen::Vector3d RemeshReference::interpolated_normal(const SurfacePoint& point) const {
   return interpolate_normal(*target_, vertex_normals_, point);
 }
@@ -182,11 +190,7 @@ RemeshQualityResult measure_remesh_quality(const std::vector<std::array<int, 3>>
     if (normal.dot(reference.normal(*corners[0], *corners[1], *corners[2])) < 0.0) {
       result.flipped_faces.push_back(static_cast<int>(f));
     }
-    const int shared = reference.shared_face(corners);
-    const auto opposes = [&](int v) {
-      return normal.dot(reference.face_normal(shared >= 0 ? shared : locations[v].face)) < 0.0;
-    };
-    if (opposes(t[0]) && opposes(t[1]) && opposes(t[2])) ++result.strictly_folded_faces;
+    if (reference.opposes_every_corner(normal, corners)) ++result.strictly_folded_faces;
   }
   result.area_ratio = result.remesh_area / result.target_area;
   return result;

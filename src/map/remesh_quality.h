@@ -48,6 +48,10 @@ class RemeshReference {
   /// lies on every face around it), or -1: where the reference normal is that face's.
   int shared_face(const std::array<const SurfacePoint*, 3>& corners) const;
 
+  /// Whether a remesh face whose normal is `normal` (any length) and whose corners lie at `corners`
+  /// is folded by the strict count: its normal opposes the normal of the target face under each
+  /// corner (that face is shared_face's for all three when there is one).
+  bool opposes_every_corner(const Eigen::Vector3d& normal, const std::array<const SurfacePoint*, 3>& corners) const;
   /// Unit normal of target face `face`.
   Eigen::Vector3d face_normal(int face) const { return face_normals_[face]; }
 
