@@ -22,19 +22,26 @@ std::pair<double, double> nearest_on_segment(const Eigen::Vector2d& p, const Eig
   return {t, (p - (a + t * ab)).norm()};
 }
 
+// The barycentrics of p in triangle abc when it holds p (all >= 0); nothing when it does not or
+// is collapsed.
+std::optional<Eigen::Vector3d> inside_barycentrics(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                                   const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const double area2 = signed_area2(a, b, c);
+  if (area2 == 0.0) return std::nullopt;
+  const Eigen::Vector3d bary(signed_area2(p, b, c) / area2, signed_area2(a, p, c) / area2,
+                             signed_area2(a, b, p) / area2);
+  if (!(bary.minCoeff() >= 0.0)) return std::nullopt;
+  return bary;
+}
+
 }  // namespace
 
 PointLocation nearest_point_in_triangle(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                                         const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   PointLocation result;
-  const double area2 = signed_area2(a, b, c);
-  if (area2 != 0.0) {
-    const Eigen::Vector3d bary(signed_area2(p, b, c) / area2, signed_area2(a, p, c) / area2,
-                               signed_area2(a, b, p) / area2);
-    if (bary.minCoeff() >= 0.0) {
-      result.bary = bary;
-      return result;
-    }
+  if (const std::optional<Eigen::Vector3d> bary = inside_barycentrics(p, a, b, c)) {
+    result.bary = *bary;
+    return result;
   }
   // Outside (or degenerate): the nearest point lies on one of the sides.
   const Eigen::Vector2d* corners[3] = {&a, &b, &c};
@@ -119,6 +126,15 @@ PointLocator::PointLocator(std::vector<Eigen::Vector2d> uv, std::vector<std::arr
   }
 }
 
+double PointLocator::box_distance(const std::array<int, 3>& triangle, const Eigen::Vector2d& p) const {
+  const Eigen::Vector2d& a = uv_[triangle[0]];
+  const Eigen::Vector2d& b = uv_[triangle[1]];
+  const Eigen::Vector2d& c = uv_[triangle[2]];
+  const Eigen::Vector2d below = a.cwiseMin(b).cwiseMin(c) - p;
+  const Eigen::Vector2d above = p - a.cwiseMax(b).cwiseMax(c);
+  return below.cwiseMax(above).cwiseMax(0.0).norm();
+}
+
 void PointLocator::test_cell(int cx, int cy, const Eigen::Vector2d& p, PointLocation& best) const {
   const int cell = cy * nx_ + cx;
   for (int i = cell_start_[cell]; i < cell_start_[cell + 1]; ++i) {
@@ -127,13 +143,8 @@ void PointLocator::test_cell(int cx, int cy, const Eigen::Vector2d& p, PointLoca
     // Skip what cannot win: a later triangle once p lies inside one, or a triangle whose
     // bounding box is already farther than the best (the answer is the same, found faster).
     if (best.distance == 0.0 && f > best.triangle) continue;
-    const Eigen::Vector2d& a = uv_[t[0]];
-    const Eigen::Vector2d& b = uv_[t[1]];
-    const Eigen::Vector2d& c = uv_[t[2]];
-    const Eigen::Vector2d below = a.cwiseMin(b).cwiseMin(c) - p;
-    const Eigen::Vector2d above = p - a.cwiseMax(b).cwiseMax(c);
-    if (below.cwiseMax(above).cwiseMax(0.0).norm() > best.distance) continue;
-    PointLocation candidate = nearest_point_in_triangle(p, a, b, c);
+    if (box_distance(t, p) > best.distance) continue;
+    PointLocation candidate = nearest_point_in_triangle(p, uv_[t[0]], uv_[t[1]], uv_[t[2]]);
     // Lowest index wins a tie, as in a scan over all triangles in order.
     if (candidate.distance < best.distance || (candidate.distance == best.distance && f < best.triangle)) {
       candidate.triangle = f;
@@ -144,23 +155,13 @@ void PointLocator::test_cell(int cx, int cy, const Eigen::Vector2d& p, PointLoca
 
 std::optional<PointLocation> PointLocator::locate_inside(const Eigen::Vector2d& p, int cx, int cy) const {
   const int cell = cy * nx_ + cx;
-  const auto box_holds = [&](const std::array<int, 3>& t) {
-    const Eigen::Vector2d& a = uv_[t[0]];
-    const Eigen::Vector2d& b = uv_[t[1]];
-    const Eigen::Vector2d& c = uv_[t[2]];
-    return (a.cwiseMin(b).cwiseMin(c).array() <= p.array()).all() &&
-           (p.array() <= a.cwiseMax(b).cwiseMax(c).array()).all();
-  };
+  const auto box_holds = [&](const std::array<int, 3>& t) { return box_distance(t, p) == 0.0; };
   for (int i = cell_start_[cell]; i < cell_start_[cell + 1]; ++i) {
     const int f = cell_triangles_[i];
     const auto& t = triangles_[f];
     if (!box_holds(t)) continue;
-    const double area2 = signed_area2(uv_[t[0]], uv_[t[1]], uv_[t[2]]);
-    if (area2 == 0.0) continue;
-    const Eigen::Vector3d bary(signed_area2(p, uv_[t[1]], uv_[t[2]]) / area2,
-                               signed_area2(uv_[t[0]], p, uv_[t[2]]) / area2,
-                               signed_area2(uv_[t[0]], uv_[t[1]], p) / area2);
-    if (!(bary.minCoeff() >= 0.0)) continue;
+    const std::optional<Eigen::Vector3d> bary = inside_barycentrics(p, uv_[t[0]], uv_[t[1]], uv_[t[2]]);
+    if (!bary) continue;
     // A lower triangle at distance 0 without holding p by its barycentrics (p on a side, off by
     // rounding, or on a collapsed triangle) wins the tie, as in the full search.
     for (int k = cell_start_[cell]; k < i; ++k) {
@@ -173,7 +174,7 @@ std::optional<PointLocation> PointLocator::locate_inside(const Eigen::Vector2d& 
         return lower;
       }
     }
-    return PointLocation{f, bary, 0.0};
+    return PointLocation{f, *bary, 0.0};
   }
   return std::nullopt;
 }

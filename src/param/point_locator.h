@@ -47,6 +47,8 @@ class PointLocator {
 
  private:
   void test_cell(int cx, int cy, const Eigen::Vector2d& p, PointLocation& best) const;
+  /// The distance from p to the bounding box of `triangle` (0 inside it).
+  double box_distance(const std::array<int, 3>& triangle, const Eigen::Vector2d& p) const;
   /// The answer when a triangle of cell (cx, cy) holds p by its barycentrics; nothing otherwise.
   std::optional<PointLocation> locate_inside(const Eigen::Vector2d& p, int cx, int cy) const;
 
