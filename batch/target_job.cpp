@@ -151,6 +151,7 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
   const FilledSurfaceImages filled = filled_surface_images(target.loaded, mapping.correspondence,
                                                            mapping.remesh_vertices, static_cast<int>(n_vertices));
   metrics.on_filled_vertices = filled.count;
+  record.distance_to_scan = to_eigen_vector(filled.distance_to_scan);
   metrics.max_distance_to_scan = filled.max_distance;
   metrics.file_faces = order.file_faces;
   if (target.ground_truth)

@@ -27,6 +27,13 @@ struct ExportOptions {
   std::string out;
 };
 
+std::string lowercase_extension(const std::string& file) {
+  std::string extension = std::filesystem::path(file).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
 // What the user asked for wrongly is a usage error (exit 1), found before anything is read in
 // full: the output's extension, the target's name (listing those the archive holds).
 void check_request(const ExportOptions& options) {
@@ -43,9 +50,7 @@ void check_request(const ExportOptions& options) {
                                               "--measurements FILE to take them");
     return;
   }
-  std::string extension = std::filesystem::path(options.out).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lowercase_extension(options.out);
   if (options.curves && extension != ".obj")
     usage_error("export", "--out " + options.out + ": curves are written as OBJ polylines, the extension must be .obj");
   if (extension != ".obj" && extension != ".ply")
@@ -81,6 +86,13 @@ void add_export_command(CLI::App& app) {
     else
       export_remesh(options->archive, options->target, options->out);
     std::cout << "wrote " << options->out << "\n";
+    const bool remesh_ply =
+        !options->measurements && !options->curves && lowercase_extension(options->out) == ".ply";
+    if (remesh_ply && !ArchiveReader(options->archive).records_distance_to_scan())
+      std::cerr << "note: " << options->archive
+                << " was written before archives recorded each image's distance to "
+                << "the scan (schema 4): distance_to_scan is NaN where on_filled is 1; map the target again "
+                   "for it\n";
   });
 }
 

@@ -40,6 +40,18 @@ std::string padded(std::string text, std::size_t width) {
 
 std::string status_of(const ArchiveTargetSummary& t) { return !t.ok ? "failed" : t.suspect ? "suspect" : "ok"; }
 
+// The scan intake's repairs of a target, and where the map lands on surface it filled in.
+void print_intake(const TargetMetrics& m, bool per_vertex_recorded) {
+  std::cout << "  intake: " << plural(static_cast<std::size_t>(m.dropped_faces), "face")
+            << " of loose parts dropped, " << plural(static_cast<std::size_t>(m.holes_filled), "hole")
+            << " filled; template vertices on filled-in surface: " << m.on_filled_vertices;
+  if (m.on_filled_vertices > 0)
+    std::cout << ", at most " << figure(m.max_distance_to_scan) << " from the scan";
+  std::cout << (per_vertex_recorded ? " (each vertex's: export --out FILE.ply, distance_to_scan)"
+                                    : " (each vertex's distance is not recorded in a schema 4 archive)")
+            << "\n";
+}
+
 // `inspect --target NAME`: the target's row, its verdict's reasons and its diagnosis.
 void print_target(const ArchiveReader& reader, const std::string& name, bool json) {
   const std::optional<std::size_t> row = reader.find(name);
@@ -62,6 +74,7 @@ void print_target(const ArchiveReader& reader, const std::string& name, bool jso
   std::cout << "  E_L2 " << figure(m.e_l2) << ", E_ang " << figure(m.e_ang) << ", folded faces " << count(m.flipped_faces)
             << " (" << count(m.strictly_folded_faces) << " by the strict count), area ratio " << figure(m.area_ratio)
             << ", released anchors " << count(m.released_anchors) << ", " << seconds_text(t.seconds.back()) << "\n";
+  if (m.dropped_faces > 0 || m.holes_filled > 0) print_intake(m, reader.records_distance_to_scan());
   const std::vector<std::string>& names = reader.measurement_names();
   for (std::size_t i = 0; i < names.size(); ++i)
     std::cout << (i == 0 ? "  measurements: " : ", ") << names[i] << " " << figure(t.measurements[i]) << " "

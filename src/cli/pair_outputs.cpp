@@ -282,6 +282,7 @@ void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& sour
   attributes.face_ints.push_back({"flipped", flipped});
   attributes.vertex_ints.push_back({"on_filled", filled.on_filled});
   for (size_t f = 0; f < faces.size(); ++f) {
+  attributes.vertex_doubles.push_back({"distance_to_scan", filled.distance_to_scan});
     const bool on_filled = std::all_of(faces[f].begin(), faces[f].end(), [&](int v) { return filled.on_filled[v] == 1; });
     attributes.face_colors.push_back(flipped[f]  ? kFlippedColor
                                      : on_filled ? kFilledColor

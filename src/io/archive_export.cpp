@@ -43,6 +43,9 @@ void export_remesh(const std::filesystem::path& archive, const std::string& name
   for (std::size_t v = 0; v < on_filled.size(); ++v)
     on_filled[v] = target.metrics.file_faces >= 0 && target.corr_face[static_cast<Eigen::Index>(v)] >= target.metrics.file_faces;
   attributes.vertex_ints.push_back({"on_filled", on_filled});
+  attributes.vertex_doubles.push_back(
+      {"distance_to_scan",
+       {target.distance_to_scan.data(), target.distance_to_scan.data() + target.distance_to_scan.size()}});
   if (std::count(on_filled.begin(), on_filled.end(), 1) > 0) {
     for (const std::array<int, 3>& t : triangles) {
       const bool filled = on_filled[t[0]] && on_filled[t[1]] && on_filled[t[2]];

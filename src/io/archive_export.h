@@ -10,7 +10,8 @@ namespace xparam {
 
 /// Write the remesh of target `name` of `archive` to `out`: OBJ when `out` ends in ".obj",
 /// PLY (binary, with per-face `patch`, `l2_stretch` and `angle_distortion`, per-vertex `on_filled`
-/// (the image lies on surface the scan intake filled in), and, when some are, faces coloured grey
+/// (the image lies on surface the scan intake filled in) and `distance_to_scan` (TargetRecord's: NaN
+/// on filled-in surface in an archive of schema 4), and, when some are on it, faces coloured grey
 /// where all three corners are) when ".ply".
 /// Positions are written exactly (io/mesh_writer.h).
 /// \throw InputError for another extension; ArchiveError when the archive lacks the target

@@ -33,9 +33,10 @@ ArchiveReader::ArchiveReader(const std::filesystem::path& path) : path_(path), f
     throw ArchiveError(path.string() + ": not an xparam archive (no 'format' attribute saying " +
                        archive_layout::kFormat + ")");
   schema_version_ = static_cast<int>(h5::read_int_attribute(file, "schema_version"));
-  if (schema_version_ != kArchiveSchemaVersion)
+  if (schema_version_ < kOldestReadableArchiveSchemaVersion || schema_version_ > kArchiveSchemaVersion)
     throw ArchiveError(path.string() + ": archive schema version " + std::to_string(schema_version_) +
-                       ", this xparam reads version " + std::to_string(kArchiveSchemaVersion));
+                       ", this xparam reads versions " + std::to_string(kOldestReadableArchiveSchemaVersion) +
+                       " to " + std::to_string(kArchiveSchemaVersion));
   if (is_part_) {
     n_vertices_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_vertices"));
     n_faces_ = static_cast<std::size_t>(h5::read_int_attribute(file, "n_faces"));
@@ -205,6 +206,16 @@ TargetRecord ArchiveReader::read_target(std::size_t row) const {
   t.corr_face = Eigen::Map<const Eigen::VectorXi>(
       h5::read_rows<std::int32_t>(rows_of("corr_face").get(), row, 1).data(), vertex_count);
   t.corr_bary = to_matrix(h5::read_rows<double>(rows_of("corr_bary").get(), row, 1), 0, n_vertices_);
+  if (records_distance_to_scan()) {
+    t.distance_to_scan = Eigen::Map<const Eigen::VectorXd>(
+        h5::read_rows<double>(rows_of("distance_to_scan").get(), row, 1).data(), vertex_count);
+  } else {
+    // Schema 4: only whether an image is on filled-in surface is known (its face is numbered after
+    // the file's), not how far it lies from the scan.
+    t.distance_to_scan = Eigen::VectorXd::Zero(vertex_count);
+    for (Eigen::Index v = 0; v < vertex_count; ++v)
+      if (t.corr_face[v] >= t.metrics.file_faces) t.distance_to_scan[v] = TargetMetrics::kNaN;
+  }
   t.face_patch =
       Eigen::Map<const Eigen::VectorXi>(h5::read_rows<std::int32_t>(rows_of("face_patch").get(), row, 1).data(), face_count);
   t.face_l2_stretch =

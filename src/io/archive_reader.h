@@ -43,7 +43,8 @@ class ArchiveReader {
  public:
   /// Open `path` (an archive, or a one-target part file of io/archive_commit.h) read-only and
   /// read its small columns.
-  /// \throw ArchiveError when it is missing, not HDF5, not an xparam archive, or of another schema version.
+  /// \throw ArchiveError when it is missing, not HDF5, not an xparam archive, or of a schema version
+  /// outside kOldestReadableArchiveSchemaVersion .. kArchiveSchemaVersion.
   explicit ArchiveReader(const std::filesystem::path& path);
 
   /// The archive's file name.
@@ -52,6 +53,9 @@ class ArchiveReader {
   const ArchiveProvenance& provenance() const { return provenance_; }
   /// Root attribute schema_version.
   int schema_version() const { return schema_version_; }
+  /// Whether /targets/distance_to_scan is stored (schema 5 on); read_target explains what an older
+  /// archive gives instead.
+  bool records_distance_to_scan() const { return schema_version_ >= 5; }
   /// Template vertex count (#V of every remesh).
   std::size_t n_vertices() const { return n_vertices_; }
   /// Template face count (#F of every remesh).
@@ -71,7 +75,8 @@ class ArchiveReader {
   bool is_part() const { return is_part_; }
   /// The template with its anchors and curves. \throw ArchiveError for a part file.
   TemplateRecord read_template() const;
-  /// Everything about the target in row `row` (arrays empty for a failed target).
+  /// Everything about the target in row `row` (arrays empty for a failed target). An archive that
+  /// does not record distance_to_scan gives 0 for images off filled-in surface and NaN on it.
   /// \throw ArchiveError when row is out of range.
   TargetRecord read_target(std::size_t row) const;
 

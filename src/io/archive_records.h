@@ -18,8 +18,13 @@
 namespace xparam {
 
 /// Version of the archive layout, stored as the root attribute `schema_version`.
-/// Bump it whenever a dataset is added, removed, renamed or changes meaning.
-inline constexpr int kArchiveSchemaVersion = 4;  // 2: released anchors; 3: suspect, diagnosis, strict folds, scan intake columns; 4: measurements
+/// Bump it whenever a dataset is added, removed, renamed or changes meaning. 2: released anchors;
+/// 3: suspect, diagnosis, strict folds, scan intake columns; 4: measurements; 5: per-vertex
+/// distance to the scan.
+inline constexpr int kArchiveSchemaVersion = 5;
+/// The oldest layout this xparam still reads: version 4 lacks only /targets/distance_to_scan
+/// (TargetRecord::distance_to_scan says what stands in for it).
+inline constexpr int kOldestReadableArchiveSchemaVersion = 4;
 
 /// The stages whose wall-clock seconds are recorded per target, in column order of
 /// /targets/timings.
@@ -111,6 +116,10 @@ struct TargetRecord {
   Eigen::MatrixX3d remesh_vertices;       ///< #V x 3: template vertex i mapped onto the target
   Eigen::VectorXi corr_face;              ///< #V target input face of each template vertex
   Eigen::MatrixX3d corr_bary;             ///< #V x 3 barycentrics in corr_face
+  /// #V distance (target units) from each template vertex's image to the faces of the target
+  /// file, 0 where the image lies on them rather than on surface the intake filled in. Read from
+  /// an archive of schema 4, which did not store it: 0 off filled-in surface, NaN on it (unknown).
+  Eigen::VectorXd distance_to_scan;
   Eigen::VectorXi face_patch;             ///< #F layout patch of each template face
   Eigen::VectorXd face_l2_stretch;        ///< #F per-face L2 stretch (paper eq. 3)
   Eigen::VectorXd face_angle_distortion;  ///< #F per-face angle distortion (paper eq. 4)

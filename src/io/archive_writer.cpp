@@ -103,6 +103,8 @@ class TargetTables {
     remesh_vertices_ = h5::create_dataset<double>(group_.get(), "remesh_vertices", {n, n_vertices_, 3}, per_subject);
     corr_face_ = h5::create_dataset<std::int32_t>(group_.get(), "corr_face", {n, n_vertices_}, per_subject);
     corr_bary_ = h5::create_dataset<double>(group_.get(), "corr_bary", {n, n_vertices_, 3}, per_subject);
+    distance_to_scan_ =
+        h5::create_dataset<double>(group_.get(), "distance_to_scan", {n, n_vertices_}, per_subject);
     face_patch_ = h5::create_dataset<std::int32_t>(group_.get(), "face_patch", {n, n_faces_}, per_subject);
     face_l2_stretch_ = h5::create_dataset<double>(group_.get(), "face_l2_stretch", {n, n_faces_}, per_subject);
     face_angle_distortion_ =
@@ -148,6 +150,7 @@ class TargetTables {
       write_row<double>(remesh_vertices_, row, RowMajorX3d(target.remesh_vertices));
       write_row<std::int32_t>(corr_face_, row, target.corr_face);
       write_row<double>(corr_bary_, row, RowMajorX3d(target.corr_bary));
+      write_row<double>(distance_to_scan_, row, target.distance_to_scan);
       write_row<std::int32_t>(face_patch_, row, target.face_patch);
       write_row<double>(face_l2_stretch_, row, target.face_l2_stretch);
       write_row<double>(face_angle_distortion_, row, target.face_angle_distortion);
@@ -162,6 +165,7 @@ class TargetTables {
       h5::write_rows(remesh_vertices_.get(), row, 1, nan_vertices.data());
       h5::write_rows(corr_face_.get(), row, 1, minus_one_vertices.data());
       h5::write_rows(corr_bary_.get(), row, 1, nan_vertices.data());
+      h5::write_rows(distance_to_scan_.get(), row, 1, nan_vertices.data());
       h5::write_rows(face_patch_.get(), row, 1, minus_one_faces.data());
       h5::write_rows(face_l2_stretch_.get(), row, 1, nan_faces.data());
       h5::write_rows(face_angle_distortion_.get(), row, 1, nan_faces.data());
@@ -190,9 +194,10 @@ class TargetTables {
     h5::write_strings(group_.get(), "anchors_file", anchors_files_);
     h5::write_strings(group_.get(), "mesh_sha256", mesh_sha256_);
     h5::write_strings(group_.get(), "anchors_sha256", anchors_sha256_);
-    for (h5::Handle* handle : {&remesh_vertices_, &corr_face_, &corr_bary_, &face_patch_, &face_l2_stretch_,
-                               &face_angle_distortion_, &anchor_miss_, &measurements_, &metrics_, &timings_, &status_,
-                               &curve_offsets_, &curve_face_, &curve_bary_, &curve_xyz_, &curves_, &group_})
+    for (h5::Handle* handle :
+         {&remesh_vertices_, &corr_face_, &corr_bary_, &distance_to_scan_, &face_patch_, &face_l2_stretch_,
+          &face_angle_distortion_, &anchor_miss_, &measurements_, &metrics_, &timings_, &status_,
+          &curve_offsets_, &curve_face_, &curve_bary_, &curve_xyz_, &curves_, &group_})
       handle->close();
   }
 
@@ -247,7 +252,8 @@ class TargetTables {
   std::size_t n_curves_;
   hsize_t n_anchors_;
   hsize_t n_measurements_;
-  h5::Handle remesh_vertices_, corr_face_, corr_bary_, face_patch_, face_l2_stretch_, face_angle_distortion_;
+  h5::Handle remesh_vertices_, corr_face_, corr_bary_, distance_to_scan_;
+  h5::Handle face_patch_, face_l2_stretch_, face_angle_distortion_;
   h5::Handle anchor_miss_, measurements_;
   h5::Handle metrics_, timings_, status_;
   h5::Handle curves_, curve_offsets_, curve_face_, curve_bary_, curve_xyz_;
@@ -317,6 +323,7 @@ void validate_target_record(const ArchiveShape& shape, const TargetRecord& targe
   expect(target.remesh_vertices.rows(), n_vertices, "remesh_vertices", "vertices");
   expect(target.corr_face.size(), n_vertices, "corr_face", "vertices");
   expect(target.corr_bary.rows(), n_vertices, "corr_bary", "vertices");
+  expect(target.distance_to_scan.size(), n_vertices, "distance_to_scan", "vertices");
   expect(target.face_patch.size(), n_faces, "face_patch", "faces");
   expect(target.face_l2_stretch.size(), n_faces, "face_l2_stretch", "faces");
   expect(target.face_angle_distortion.size(), n_faces, "face_angle_distortion", "faces");

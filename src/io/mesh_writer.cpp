@@ -100,11 +100,14 @@ std::vector<std::string> names_of(const std::vector<NamedValues<T>>& properties)
 
 void check_attributes(const PlyAttributes& attributes, std::size_t vertices, std::size_t faces) {
   check_sizes(attributes.vertex_ints, vertices, "vertex");
+  check_sizes(attributes.vertex_doubles, vertices, "vertex");
   check_sizes(attributes.face_ints, faces, "face");
   check_sizes(attributes.face_doubles, faces, "face");
   XP_ASSERT_MSG(attributes.face_colors.empty() || attributes.face_colors.size() == faces,
                 attributes.face_colors.size() << " face colours for " << faces << " faces");
-  check_names({"x", "y", "z"}, names_of(attributes.vertex_ints));
+  std::vector<std::string> vertex_names = names_of(attributes.vertex_ints);
+  for (const std::string& name : names_of(attributes.vertex_doubles)) vertex_names.push_back(name);
+  check_names({"x", "y", "z"}, vertex_names);
   std::vector<std::string> face_names = names_of(attributes.face_ints);
   for (const std::string& name : names_of(attributes.face_doubles)) face_names.push_back(name);
   check_names({"vertex_indices", "red", "green", "blue"}, face_names);
@@ -117,6 +120,7 @@ std::string ply_header(std::size_t vertices, std::size_t faces, const PlyAttribu
   header += " 1.0\ncomment written by xparam\nelement vertex " + std::to_string(vertices) +
             "\nproperty double x\nproperty double y\nproperty double z\n";
   for (const auto& p : attributes.vertex_ints) header += "property int " + p.name + "\n";
+  for (const auto& p : attributes.vertex_doubles) header += "property double " + p.name + "\n";
   header += "element face " + std::to_string(faces) + "\nproperty list uchar int vertex_indices\n";
   for (const auto& p : attributes.face_ints) header += "property int " + p.name + "\n";
   for (const auto& p : attributes.face_doubles) header += "property double " + p.name + "\n";
@@ -137,6 +141,10 @@ std::string ascii_ply_body(const std::vector<Eigen::Vector3d>& vertices,
     for (const auto& p : attributes.vertex_ints) {
       out += ' ';
       append_number(out, static_cast<long long>(p.values[v]));
+    }
+    for (const auto& p : attributes.vertex_doubles) {
+      out += ' ';
+      append_number(out, p.values[v]);
     }
     out += '\n';
   }
@@ -172,6 +180,7 @@ std::string binary_ply_body(const std::vector<Eigen::Vector3d>& vertices,
   for (std::size_t v = 0; v < vertices.size(); ++v) {
     for (int k = 0; k < 3; ++k) append_binary(out, vertices[v][k]);
     for (const auto& p : attributes.vertex_ints) append_binary(out, static_cast<std::int32_t>(p.values[v]));
+    for (const auto& p : attributes.vertex_doubles) append_binary(out, p.values[v]);
   }
   for (std::size_t f = 0; f < triangles.size(); ++f) {
     append_binary(out, std::uint8_t{3});

@@ -34,6 +34,8 @@ struct NamedValues {
 /// differ from the reserved x, y, z, vertex_indices, red, green, blue.
 struct PlyAttributes {
   std::vector<NamedValues<int>> vertex_ints;  ///< `property int <name>` on vertices, e.g. anchor (-1 = none)
+  std::vector<NamedValues<double>>
+      vertex_doubles;                         ///< `property double <name>` on vertices, e.g. distance_to_scan
   std::vector<NamedValues<int>> face_ints;    ///< `property int <name>` on faces, e.g. patch
   std::vector<NamedValues<double>> face_doubles;  ///< `property double <name>` on faces, e.g. l2_stretch
   std::vector<std::array<std::uint8_t, 3>> face_colors;  ///< empty, or one RGB per face (`uchar red green
@@ -47,7 +49,7 @@ enum class PlyEncoding {
 };
 
 /// Writes vertices (#V positions) and triangles (#F 0-based vertex triples) with `attributes`
-/// as PLY: `element vertex` with double x, y, z then the vertex ints; `element face` with
+/// as PLY: `element vertex` with double x, y, z then the vertex ints and doubles; `element face` with
 /// `list uchar int vertex_indices`, then the face ints, face doubles and colours, in that order.
 /// \pre indices in [0, #V); finite positions; every attribute sized #V or #F (InternalError otherwise)
 void write_ply(const std::filesystem::path& path, const std::vector<Eigen::Vector3d>& vertices,

@@ -87,6 +87,8 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
   r.metrics.holes_filled = k % 3;
   r.metrics.filled_area = 0.02 * k;
   // corr_face k..k+5 against a file of k + 3 faces: vertices 3, 4, 5 land on fill faces.
+  r.distance_to_scan.resize(6);
+  r.distance_to_scan << 0, 0, 0, 0.0004 * k, 0.0007 * k, 0.001 * k;
   r.metrics.on_filled_vertices = 3;
   r.metrics.max_distance_to_scan = 0.001 * k;
   r.metrics.file_faces = k + 3;
@@ -247,16 +249,77 @@ TEST(ExportCommand, PlyFlagsTheVerticesOnFilledInSurface) {
   ASSERT_NE(body, std::string::npos);
   const std::string header = bytes.substr(0, body);
   EXPECT_NE(header.find("element vertex 6\nproperty double x\nproperty double y\nproperty double z\n"
-                        "property int on_filled\n"),
+                        "property int on_filled\nproperty double distance_to_scan\n"),
             std::string::npos)
       << header;
   EXPECT_NE(header.find("property uchar red"), std::string::npos) << header;
-  // Binary little endian: x, y, z as doubles, then the flag; vertices 3, 4, 5 are on fill faces.
+  // Binary little endian: x, y, z as doubles, the flag, the distance; vertices 3, 4, 5 are on fill faces.
+  const TargetRecord dora = make_targets(t)[3];
   for (int v = 0; v < 6; ++v) {
     std::int32_t flag = -1;
-    std::memcpy(&flag, bytes.data() + body + 11 + v * 28 + 24, sizeof flag);
+    double distance = -1.0;
+    std::memcpy(&flag, bytes.data() + body + 11 + v * 36 + 24, sizeof flag);
+    std::memcpy(&distance, bytes.data() + body + 11 + v * 36 + 28, sizeof distance);
     EXPECT_EQ(flag, v >= 3 ? 1 : 0) << "vertex " << v;
+    EXPECT_EQ(distance, dora.distance_to_scan[v]) << "vertex " << v;
   }
+  EXPECT_EQ(run.err.find("note:"), std::string::npos) << run.err;
+  fs::remove_all(dir);
+}
+
+// The archive as xparam wrote it before schema 5: no /targets/distance_to_scan.
+void make_schema_4(const fs::path& archive) {
+  const h5::Handle file(H5Fopen(archive.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, archive.string());
+  h5::check(H5Ldelete(file.get(), "targets/distance_to_scan", H5P_DEFAULT), archive.string(), "delete");
+  h5::check(H5Adelete(file.get(), "schema_version"), archive.string(), "delete");
+  h5::write_attribute(file.get(), "schema_version", std::int64_t{4});
+}
+
+TEST(ExportCommand, AnArchiveOfSchema4ReadsWithoutDistancesAndSaysSo) {
+  const fs::path dir = test::fresh_temp_dir("cli_export_schema_4");
+  const TemplateRecord t = make_template();
+  write_archive(dir / "run.h5", t, provenance(), make_targets(t));
+  make_schema_4(dir / "run.h5");
+
+  // Images off filled-in surface are on the scan (0); how far the others are was not recorded.
+  const ArchiveReader reader(dir / "run.h5");
+  EXPECT_FALSE(reader.records_distance_to_scan());
+  const TargetRecord dora = reader.read_target(*reader.find("dora"));
+  for (int v = 0; v < 6; ++v) EXPECT_EQ(std::isnan(dora.distance_to_scan[v]), v >= 3) << "vertex " << v;
+  EXPECT_EQ(dora.distance_to_scan.head(3), Eigen::Vector3d::Zero());
+
+  const std::string archive = (dir / "run.h5").string();
+  CommandRun run =
+      run_xparam("export " + archive + " --target dora --out " + (dir / "dora.ply").string(), dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("distance_to_scan is NaN where on_filled is 1"), std::string::npos) << run.err;
+  run = run_xparam("export " + archive + " --target dora --out " + (dir / "dora.obj").string(), dir);
+  EXPECT_EQ(run.err.find("note:"), std::string::npos) << run.err;
+
+  run = run_xparam("inspect " + archive + " --target dora", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(
+      run.out.find("intake: 12 faces of loose parts dropped, 0 holes filled; template vertices on filled-in "
+                   "surface: 3, at most 0.003 from the scan (each vertex's distance is not recorded in a "
+                   "schema 4 archive)"),
+      std::string::npos)
+      << run.out;
+  fs::remove_all(dir);
+}
+
+TEST(InspectCommand, TargetShowsItsIntakeRepairs) {
+  const fs::path dir = test::fresh_temp_dir("cli_inspect_intake");
+  const TemplateRecord t = make_template();
+  write_archive(dir / "run.h5", t, provenance(), make_targets(t));
+  const CommandRun run = run_xparam("inspect " + (dir / "run.h5").string() + " --target bob", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // bob (k = 1): 4 faces dropped, 1 hole filled, 3 vertices on it, the farthest 0.001 from the scan.
+  EXPECT_NE(
+      run.out.find("intake: 4 faces of loose parts dropped, 1 hole filled; template vertices on filled-in "
+                   "surface: 3, at most 0.001 from the scan (each vertex's: export --out FILE.ply, "
+                   "distance_to_scan)"),
+      std::string::npos)
+      << run.out;
   fs::remove_all(dir);
 }
 

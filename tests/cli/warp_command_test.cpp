@@ -49,6 +49,7 @@ TargetRecord sphere_target(const TemplateRecord& t, const std::string& name, dou
   const auto n = t.vertices.rows();
   r.corr_face = Eigen::VectorXi::Zero(n);
   r.corr_bary = Eigen::MatrixX3d::Constant(n, 3, 1.0 / 3.0);
+  r.distance_to_scan = Eigen::VectorXd::Zero(n);
   r.face_patch = Eigen::VectorXi::Zero(t.faces.rows());
   r.face_l2_stretch = Eigen::VectorXd::Ones(t.faces.rows());
   r.face_angle_distortion = Eigen::VectorXd::Zero(t.faces.rows());

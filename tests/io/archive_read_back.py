@@ -48,7 +48,7 @@ def check_layout(path):
     """Opens the archive, reads every dataset, checks shapes and invariants; returns the file."""
     f = h5py.File(path, "r")
     require(attr_text(f, "format") == "xparam-archive", "format attribute")
-    require(int(f.attrs["schema_version"]) == 4, "schema_version")
+    require(int(f.attrs["schema_version"]) == 5, "schema_version")
     for name in ("xparam_version", "git_revision", "options_json"):
         attr_text(f, name)
     json.loads(attr_text(f, "options_json"))
@@ -78,7 +78,7 @@ def check_layout(path):
     require(status_dtype == {"failed": 0, "ok": 1, "suspect": 2}, "status enum")
     ok = t["status"][()] != 0  # ok or suspect: the map exists
     shapes = {"remesh_vertices": (n, n_v, 3), "corr_face": (n, n_v), "corr_bary": (n, n_v, 3),
-              "face_patch": (n, n_f), "face_l2_stretch": (n, n_f), "face_angle_distortion": (n, n_f)}
+              "distance_to_scan": (n, n_v), "face_patch": (n, n_f), "face_l2_stretch": (n, n_f), "face_angle_distortion": (n, n_f)}
     for name, shape in shapes.items():
         d = t[name]
         require(d.shape == shape, f"{name} shape {d.shape} != {shape}")
@@ -203,6 +203,7 @@ def check_values(f, expected):
         require(close(t["remesh_vertices"][i], e["remesh_vertices"]), where + "remesh_vertices")
         require(list(t["corr_face"][i]) == e["corr_face"], where + "corr_face")
         require(close(t["corr_bary"][i], e["corr_bary"]), where + "corr_bary")
+        require(close(t["distance_to_scan"][i], e["distance_to_scan"]), where + "distance_to_scan")
         require(list(t["face_patch"][i]) == e["face_patch"], where + "face_patch")
         require(close(t["face_l2_stretch"][i], e["face_l2_stretch"]), where + "face_l2_stretch")
         require(close(t["face_angle_distortion"][i], e["face_angle_distortion"]), where + "face_angle_distortion")

@@ -94,6 +94,8 @@ TargetRecord make_target(const TemplateRecord& t, const std::string& name, int k
     const double b = static_cast<double>((i * k) % 3) / 10.0;
     r.corr_bary.row(i) << a, b, 1.0 - a - b;
   }
+  // corr_face at or above file_faces (1000 + k) is on a fill face: none here, so every distance is 0.
+  r.distance_to_scan = Eigen::VectorXd::Zero(n_vertices);
   r.face_patch.resize(n_faces);
   r.face_l2_stretch.resize(n_faces);
   r.face_angle_distortion.resize(n_faces);
@@ -262,6 +264,7 @@ nlohmann::json expectation(const TemplateRecord& t, const ArchiveProvenance& p,
       j["remesh_vertices"] = matrix_json(r.remesh_vertices);
       j["corr_face"] = vector_of(r.corr_face);
       j["corr_bary"] = matrix_json(r.corr_bary);
+      j["distance_to_scan"] = vector_of(r.distance_to_scan);
       j["face_patch"] = vector_of(r.face_patch);
       j["face_l2_stretch"] = vector_of(r.face_l2_stretch);
       j["face_angle_distortion"] = vector_of(r.face_angle_distortion);

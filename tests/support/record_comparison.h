@@ -43,6 +43,7 @@ inline void expect_same_results(const TargetRecord& a, const TargetRecord& b) {
   EXPECT_TRUE(same_bits(a.remesh_vertices, b.remesh_vertices));
   EXPECT_TRUE(same_bits(a.corr_face, b.corr_face));
   EXPECT_TRUE(same_bits(a.corr_bary, b.corr_bary));
+  EXPECT_TRUE(same_bits(a.distance_to_scan, b.distance_to_scan));
   EXPECT_TRUE(same_bits(a.face_patch, b.face_patch));
   EXPECT_TRUE(same_bits(a.face_l2_stretch, b.face_l2_stretch));
   EXPECT_TRUE(same_bits(a.face_angle_distortion, b.face_angle_distortion));
