@@ -176,13 +176,19 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
   return options.dump();
 }
 
+IntakeSettings intake_before_it_existed() {
+  IntakeSettings intake;
+  intake.mode = IntakeMode::Strict;
+  return intake;
+}
+
+std::string implied_options_json() { return batch_options_json({}, {}, intake_before_it_existed()); }
+
 IntakeSettings recorded_intake(const std::string& options_json) {
   IntakeSettings intake;
   const nlohmann::json options = nlohmann::json::parse(options_json, nullptr, false);
-  if (options.is_discarded() || !options.is_object() || !options.contains("intake")) {
-    intake.mode = IntakeMode::Strict;
-    return intake;
-  }
+  if (options.is_discarded() || !options.is_object() || !options.contains("intake"))
+    return intake_before_it_existed();
   try {
     const nlohmann::json& recorded = options.at("intake");
     intake.mode = recorded.at("mode").get<std::string>() == "strict" ? IntakeMode::Strict : IntakeMode::Repair;
@@ -203,7 +209,8 @@ BatchSummary run_batch(const PreparedTemplate& prepared, const BatchPlan& plan, 
       current_provenance(batch_options_json(settings.pair, settings.limits, settings.intake));
   BatchArchive archive =
       settings.resume
-          ? BatchArchive::resume(settings.archive, prepared.record, provenance, settings.archive_settings)
+          ? BatchArchive::resume(settings.archive, prepared.record, provenance, implied_options_json(),
+                                 settings.archive_settings)
           : BatchArchive::create(settings.archive, prepared.record, provenance, settings.archive_settings);
 
   BatchSummary summary;

@@ -121,6 +121,16 @@ struct BatchSummary {
 std::string batch_options_json(const PairSettings& settings, const QualityLimits& limits = {},
                                const IntakeSettings& intake = {});
 
+/// What an archive's options imply for an option they do not record (written before the option
+/// existed): the behaviour then, which is each option's default (batch_options_json of default
+/// settings), except the intake's mode: before the intake, every target was taken as it was
+/// (strict). A resumed run compares against it (io/options_difference.h).
+std::string implied_options_json();
+
+/// The intake settings of a run from before the intake existed: strict, the other limits at their
+/// defaults (recorded_intake of options without "intake").
+IntakeSettings intake_before_it_existed();
+
 /// The scan intake's settings back from batch_options_json's object (a target's recorded
 /// options); IntakeMode::Strict when it has no "intake" (archives from before the intake loaded
 /// every target as it was). \throw ArchiveError when "intake" is there but not as written

@@ -1,5 +1,6 @@
 #include "batch/batch_plan.h"
 
+#include "batch/batch_driver.h"
 #include "io/archive_commit.h"
 #include "io/options_difference.h"
 #include "io/sha256.h"
@@ -42,8 +43,10 @@ std::string stale_reason(const TargetSpec& spec, const ArchiveTargetSummary& rec
   if (sha256_file_hex_or_empty(spec.mesh) != recorded.mesh_sha256) return "its mesh " + spec.mesh.string() + " changed since it ran";
   if (sha256_file_hex_or_empty(spec.anchors) != recorded.anchors_sha256)
     return "its anchors " + spec.anchors.string() + " changed since they were used";
-  if (!options_json.empty() && !recorded.options_json.empty() && recorded.options_json != options_json)
-    return "it ran with other options: " + options_difference(recorded.options_json, options_json);
+  if (options_json.empty() || recorded.options_json.empty()) return {};
+  const std::string difference =
+      options_difference(recorded.options_json, options_json, implied_options_json());
+  if (!difference.empty()) return "it ran with other options: " + difference;
   return {};
 }
 

@@ -56,7 +56,7 @@ std::map<std::string, ArchiveTargetSummary> committed_targets(const std::filesys
 ///    was edited since: its result is stale);
 ///  - those recorded with other options than `options_json` (batch_options_json), when it is
 ///    not empty and the record has options (a part records its own): kept rows are only ever
-///    rows of this run's options.
+///    rows of this run's options (an option a record predates counts as implied_options_json's).
 /// The reason of every rerun is in PlannedTarget::reason.
 BatchPlan plan_batch(const std::vector<TargetSpec>& discovered, const Shard& shard,
                      const std::map<std::string, ArchiveTargetSummary>& committed, bool retry_failed,

@@ -78,13 +78,14 @@ void write_template_part(const std::filesystem::path& archive, const TemplateRec
 
 void require_same_run(const std::filesystem::path& recorded_in, const TemplateRecord& recorded_template,
                       const ArchiveProvenance& recorded, const TemplateRecord& template_record,
-                      const ArchiveProvenance& provenance) {
+                      const ArchiveProvenance& provenance, const std::string& implied_options_json) {
   if (!same_template(recorded_template, template_record))
     throw ArchiveError(recorded_in.string() + ": cannot resume: the template differs from the one the archive was "
                                               "started with (" + recorded_template.mesh_file + ")");
-  if (recorded.options_json != provenance.options_json)
-    throw ArchiveError(recorded_in.string() + ": cannot resume: " +
-                       options_difference(recorded.options_json, provenance.options_json) +
+  const std::string difference =
+      options_difference(recorded.options_json, provenance.options_json, implied_options_json);
+  if (!difference.empty())
+    throw ArchiveError(recorded_in.string() + ": cannot resume: " + difference +
                        "; run with the archive's options to continue it, or with --force to start over");
 }
 
@@ -149,7 +150,9 @@ BatchArchive BatchArchive::create(const std::filesystem::path& archive, const Te
 }
 
 BatchArchive BatchArchive::resume(const std::filesystem::path& archive, const TemplateRecord& template_record,
-                                  const ArchiveProvenance& provenance, const ArchiveWriteSettings& settings) {
+                                  const ArchiveProvenance& provenance,
+                                  const std::string& implied_options_json,
+                                  const ArchiveWriteSettings& settings) {
   const std::filesystem::path template_part = template_part_path(archive);
   const bool have_parts = std::filesystem::is_regular_file(template_part);
   const bool have_archive = std::filesystem::is_regular_file(archive);
@@ -160,14 +163,16 @@ BatchArchive BatchArchive::resume(const std::filesystem::path& archive, const Te
   ArchiveProvenance recorded = provenance;
   if (have_parts) {
     const ArchiveReader part(template_part);
-    require_same_run(template_part, part.read_template(), part.provenance(), template_record, provenance);
+    require_same_run(template_part, part.read_template(), part.provenance(), template_record, provenance,
+                     implied_options_json);
     recorded = part.provenance();
   }
   BatchArchive batch(archive, template_record, recorded, settings);
   if (have_archive) {
     // A finished run removed its parts: the archive's rows become parts again.
     const ArchiveReader existing(archive);
-    require_same_run(archive, existing.read_template(), existing.provenance(), template_record, provenance);
+    require_same_run(archive, existing.read_template(), existing.provenance(), template_record, provenance,
+                     implied_options_json);
     if (!have_parts) {
       batch.provenance_ = existing.provenance();
       write_template_part(archive, template_record, batch.provenance_);

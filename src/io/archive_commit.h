@@ -53,9 +53,13 @@ class BatchArchive {
 
   /// Continue the archive at `archive`: the targets already committed (parts, or rows of an
   /// existing ARCHIVE.h5) are kept; a missing archive starts fresh as create() does.
-  /// \throw ArchiveError when the template or the options differ from the recorded ones.
+  /// \throw ArchiveError when the template or the options differ from the recorded ones; an
+  ///   option the recorded ones lack (an archive older than the option) compares as its value in
+  ///   `implied_options_json` (io/options_difference.h).
   static BatchArchive resume(const std::filesystem::path& archive, const TemplateRecord& template_record,
-                             const ArchiveProvenance& provenance, const ArchiveWriteSettings& settings = {});
+                             const ArchiveProvenance& provenance,
+                             const std::string& implied_options_json = "{}",
+                             const ArchiveWriteSettings& settings = {});
 
   /// Names of the targets committed so far, sorted.
   std::vector<std::string> committed() const;

@@ -19,32 +19,50 @@ void flatten(const Json& value, const std::string& prefix, std::map<std::string,
   out[prefix] = value.dump();
 }
 
+std::map<std::string, std::string> leaves(const Json& value) {
+  std::map<std::string, std::string> out;
+  if (!value.is_discarded() && value.is_object()) flatten(value, "", out);
+  return out;
+}
+
 }  // namespace
 
-std::string options_difference(const std::string& recorded_json, const std::string& current_json) {
+std::string options_difference(const std::string& recorded_json, const std::string& current_json,
+                               const std::string& implied_json) {
   if (recorded_json == current_json) return {};
   const Json recorded = Json::parse(recorded_json, nullptr, false);
   const Json current = Json::parse(current_json, nullptr, false);
   if (recorded.is_discarded() || current.is_discarded() || !recorded.is_object() || !current.is_object())
     return "options were " + recorded_json + ", now " + current_json;
-  std::map<std::string, std::string> before;
-  std::map<std::string, std::string> after;
-  flatten(recorded, "", before);
-  flatten(current, "", after);
+  const std::map<std::string, std::string> before = leaves(recorded);
+  const std::map<std::string, std::string> after = leaves(current);
+  const std::map<std::string, std::string> implied = leaves(Json::parse(implied_json, nullptr, false));
   std::set<std::string> keys;
   for (const auto& [key, value] : before) keys.insert(key);
   for (const auto& [key, value] : after) keys.insert(key);
+  bool any_implied = false;
   std::string text;
   for (const std::string& key : keys) {
     const auto was = before.find(key);
     const auto now = after.find(key);
-    const std::string was_text = was == before.end() ? "absent" : was->second;
+    const auto then = implied.find(key);
     const std::string now_text = now == after.end() ? "absent" : now->second;
-    if (was_text == now_text) continue;
+    std::string difference;
+    if (was != before.end()) {
+      if (was->second != now_text) difference = "was " + was->second + ", now " + now_text;
+    } else if (then != implied.end()) {
+      any_implied = true;
+      if (then->second != now_text)
+        difference = "is not recorded (the archive predates it: " + then->second + "), now " + now_text;
+    } else if (now_text != "absent") {
+      difference = "was absent, now " + now_text;
+    }
+    if (difference.empty()) continue;
     if (!text.empty()) text += "; ";
-    text += "option \"" + key + "\" was " + was_text + ", now " + now_text;
+    text += "option \"" + key + "\" " + difference;
   }
-  return text.empty() ? "options differ only in their order" : text;
+  if (text.empty() && !any_implied) return "options differ only in their order";
+  return text;
 }
 
 }  // namespace xparam

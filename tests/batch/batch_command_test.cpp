@@ -3,6 +3,10 @@
 // scripts: batch_command_slow_test).
 #include "batch_test_support.h"
 
+#include "batch/batch_driver.h"
+#include "io/archive_commit.h"
+#include "io/sha256.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -15,6 +19,11 @@ using test::quoted;
 using test::batch;
 using test::kQuick;
 using test::template_options;
+
+// The options of test::man_template(): the README's template with its curves and measurements.
+std::string man_template_options() {
+  return template_options() + " --measurements " + quoted(test::data_path("human.measurements.json"));
+}
 
 // The woman's anchors with LEFT_NIPPLE and RIGHT_NIPPLE traded: a left/right mix-up in a
 // landmark file.
@@ -94,6 +103,52 @@ TEST(BatchCommand, UsageAndFatalErrorsHaveTheirExitCodes) {
   test::write_file(dir / "file.txt", "x");
   EXPECT_EQ(batch(dir, template_options() + targets + " --out " + quoted(dir / "file.txt" / "a.h5")), 3);
   EXPECT_FALSE(std::filesystem::exists(dir / "a.h5"));
+}
+
+// An archive written before --work-vertices existed: its options have no "work_vertices". Its one
+// target, the woman, is committed as failed with her files' digests, so a resume keeps it and maps
+// nothing.
+void write_archive_predating_work_vertices(const path& archive, const path& targets) {
+  nlohmann::ordered_json options = nlohmann::ordered_json::parse(batch_options_json({}));
+  ASSERT_EQ(options.erase("work_vertices"), 1u);
+  const PreparedTemplate prepared = prepare_template(test::man_template());
+  BatchArchive batch = BatchArchive::create(archive, prepared.record, current_provenance(options.dump()));
+  TargetRecord woman;
+  woman.name = "woman";
+  woman.error = "woman.obj: mapped by an older xparam";
+  woman.mesh_file = (targets / "woman.obj").string();
+  woman.anchors_file = (targets / "woman.anchors.json").string();
+  woman.mesh_sha256 = sha256_file_hex(targets / "woman.obj");
+  woman.anchors_sha256 = sha256_file_hex(targets / "woman.anchors.json");
+  batch.commit(woman);
+  batch.finish();
+}
+
+TEST(BatchCommand, AnArchiveOlderThanAnOptionResumesAtItsDefaultOnly) {
+  const path dir = test::fresh_temp_dir("command_resume_older_options");
+  test::copy_sample_targets(dir / "targets", {"woman"});
+  const path archive = dir / "old.h5";
+  write_archive_predating_work_vertices(archive, dir / "targets");
+  const std::string before = test::read_file(archive);
+  const std::string run = man_template_options() + " --targets " + quoted(dir / "targets") + " --out " +
+                          quoted(archive) + " --resume";
+
+  // Another value than the one the archive ran with (the default then): refused, naming both.
+  EXPECT_EQ(batch(dir, run + " --work-vertices 5000"), 3);
+  const std::string refusal = test::read_file(dir / "stderr.txt");
+  EXPECT_NE(
+      refusal.find("option \"work_vertices\" is not recorded (the archive predates it: 100000), now 5000"),
+      std::string::npos)
+      << refusal;
+  EXPECT_EQ(test::read_file(archive), before);
+
+  // The default: the archive's own behaviour, so the run continues it (the failed target kept).
+  EXPECT_EQ(batch(dir, run), 2) << test::read_file(dir / "stderr.txt");
+  const std::string log = test::read_file(dir / "stderr.txt");
+  EXPECT_EQ(log.find("cannot resume"), std::string::npos) << log;
+  const ArchiveReader resumed(archive);
+  ASSERT_EQ(resumed.targets().size(), 1u);
+  EXPECT_EQ(resumed.targets()[0].error, "woman.obj: mapped by an older xparam");
 }
 
 }  // namespace
