@@ -1,5 +1,6 @@
 #include "batch/summary_json.h"
 
+#include "batch/intake_totals.h"
 #include "core/errors.h"
 #include "core/version.h"
 
@@ -17,12 +18,27 @@ nlohmann::ordered_json count_or_null(int value) {
   return value >= 0 ? nlohmann::ordered_json(value) : nlohmann::ordered_json(nullptr);
 }
 
-// The verdict's reasons out of the diagnosis JSON (empty for a failed target).
-nlohmann::ordered_json reasons_of(const TargetOutcome& outcome) {
-  if (outcome.diagnosis.empty()) return nlohmann::ordered_json::array();
+// Entry `key` of the diagnosis JSON, or `absent` (a failed target has no diagnosis).
+nlohmann::ordered_json diagnosis_entry(const TargetOutcome& outcome, const char* key,
+                                       const nlohmann::ordered_json& absent) {
+  if (outcome.diagnosis.empty()) return absent;
   const nlohmann::ordered_json diagnosis = nlohmann::ordered_json::parse(outcome.diagnosis, nullptr, false);
-  if (diagnosis.is_discarded() || !diagnosis.contains("reasons")) return nlohmann::ordered_json::array();
-  return diagnosis["reasons"];
+  if (diagnosis.is_discarded() || !diagnosis.contains(key)) return absent;
+  return diagnosis[key];
+}
+
+nlohmann::ordered_json intake_totals_json(const std::vector<TargetOutcome>& targets) {
+  const IntakeTotals totals = intake_totals(targets);
+  nlohmann::ordered_json json;
+  json["repaired"] = totals.repaired;
+  json["with_parts_dropped"] = totals.with_parts_dropped;
+  json["with_holes_filled"] = totals.with_holes_filled;
+  json["dropped_faces"] = totals.dropped_faces;
+  json["dropped_area"] = totals.dropped_area;
+  json["holes_filled"] = totals.holes_filled;
+  json["filled_area"] = totals.filled_area;
+  json["on_filled_vertices"] = totals.on_filled_vertices;
+  return json;
 }
 
 }  // namespace
@@ -33,7 +49,7 @@ nlohmann::ordered_json target_json(const TargetOutcome& outcome, bool with_ran,
   target["name"] = outcome.name;
   target["status"] = !outcome.ok ? "failed" : outcome.suspect ? "suspect" : "ok";
   target["error"] = outcome.error;
-  target["reasons"] = reasons_of(outcome);
+  target["reasons"] = diagnosis_entry(outcome, "reasons", nlohmann::ordered_json::array());
   if (with_ran) target["ran"] = outcome.ran;
   target["mesh_file"] = outcome.mesh_file;
   target["anchors_file"] = outcome.anchors_file;
@@ -71,6 +87,9 @@ nlohmann::ordered_json target_json(const TargetOutcome& outcome, bool with_ran,
           number_or_null(i < outcome.measurements.size() ? outcome.measurements[i] : TargetMetrics::kNaN);
     target["measurements"] = measurements;
   }
+  // What the intake repaired (metrics.json's `intake`), only for a target it repaired.
+  if (const nlohmann::ordered_json intake = diagnosis_entry(outcome, "intake", nullptr); !intake.is_null())
+    target["intake"] = intake;
   return target;
 }
 
@@ -93,6 +112,7 @@ nlohmann::ordered_json summary_json(const BatchSummary& summary) {
   json["not_run"] = summary.not_run;
   json["seconds"] = summary.seconds;
   json["targets_per_second"] = summary.targets_per_second();
+  json["intake"] = intake_totals_json(summary.targets);
   nlohmann::ordered_json targets = nlohmann::ordered_json::array();
   for (const TargetOutcome& outcome : summary.targets)
     targets.push_back(target_json(outcome, true, summary.measurement_names));

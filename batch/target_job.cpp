@@ -5,11 +5,12 @@
 #include "batch/ground_truth.h"
 #include "core/anchor_placement.h"
 #include "core/errors.h"
-#include "core/stopwatch.h"
 #include "core/orientation.h"
-#include "io/anchor_reader.h"
+#include "core/stopwatch.h"
 #include "intake/filled_surface.h"
+#include "intake/intake_json.h"
 #include "intake/scan_loader.h"
+#include "io/anchor_reader.h"
 #include "io/mesh_loader.h"
 #include "io/sha256.h"
 #include "layout/anchor_swaps.h"
@@ -150,8 +151,8 @@ void fill_outputs(const PairMapping& mapping, const PreparedTemplate& prepared, 
   metrics.filled_area = intake.filled_area();
   const FilledSurfaceImages filled = filled_surface_images(target.loaded, mapping.correspondence,
                                                            mapping.remesh_vertices, static_cast<int>(n_vertices));
-  metrics.on_filled_vertices = filled.count;
   record.distance_to_scan = to_eigen_vector(filled.distance_to_scan);
+  metrics.on_filled_vertices = filled.count;
   metrics.max_distance_to_scan = filled.max_distance;
   metrics.file_faces = order.file_faces;
   if (target.ground_truth)
@@ -206,7 +207,9 @@ void run_stages(const PreparedTemplate& prepared, const TargetSpec& target, cons
   record.seconds[kParameterize] = mapping.seconds.parameterize;
   record.seconds[kCompose] = mapping.seconds.compose;
   fill_outputs(mapping, prepared, loaded, record);
-  const TargetJudgement judgement = judge_mapping(mapping, swapped_landmarks(mapping), limits);
+  TargetJudgement judgement = judge_mapping(mapping, swapped_landmarks(mapping), limits);
+  // Only for a target the intake repaired, so the others' diagnosis is as it was.
+  if (loaded.loaded.intake.applied) judgement.diagnosis["intake"] = intake_json(loaded.loaded.intake);
   record.suspect = judgement.verdict == Verdict::Suspect;
   record.diagnosis = judgement.diagnosis.dump();
   record.seconds[kOutputs] = mapping.seconds.metrics + watch.lap();

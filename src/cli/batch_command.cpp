@@ -10,12 +10,13 @@
 #include "batch/batch_driver.h"
 #include "batch/batch_plan.h"
 #include "batch/common_anchors.h"
+#include "batch/intake_totals.h"
 #include "batch/summary_json.h"
 #include "batch/target_discovery.h"
 #include "batch/template_preparation.h"
 #include "core/errors.h"
-#include "io/archive_commit.h"
 #include "io/anchor_reader.h"
+#include "io/archive_commit.h"
 #include "io/archive_lock.h"
 #include "io/output_paths.h"
 
@@ -177,6 +178,20 @@ void refuse_to_replace(const BatchOptions& options) {
                             "are kept), or --force to start over (its results are deleted)");
 }
 
+// The closing line on the scan intake, when it repaired a target: how many, what, and where each
+// target's record is.
+void print_intake_totals(const BatchSummary& summary) {
+  const IntakeTotals totals = intake_totals(summary.targets);
+  if (totals.repaired == 0) return;
+  std::cerr << "xparam batch: the intake repaired " << totals.repaired << " of "
+            << plural(summary.targets.size(), "target") << ": loose parts dropped from "
+            << totals.with_parts_dropped << " (" << plural(totals.dropped_faces, "face")
+            << "), holes filled in " << totals.with_holes_filled << " ("
+            << plural(totals.holes_filled, "hole") << ", area " << figure(totals.filled_area) << "); "
+            << totals.on_filled_vertices << " template vertices in all land on filled-in surface "
+            << "(per target: --summary, or xparam inspect ARCHIVE --target NAME)\n";
+}
+
 void print_interrupted(const BatchSummary& summary) {
   std::cerr << "xparam batch: interrupted: " << plural(summary.ran, "target") << " ran and "
             << (summary.ran == 1 ? "is" : "are") << " committed, " << summary.not_run << " did not start; archive "
@@ -259,13 +274,15 @@ int run_command(const BatchOptions& options) {
       print_interrupted(summary);
       return kExitInterrupted;
     }
-    if (!options.quiet)
+    if (!options.quiet) {
       std::cerr << "xparam batch: " << plural(summary.targets.size(), "target") << ": "
               << summary.succeeded - summary.suspect << " ok, " << summary.suspect << " suspect, " << summary.failed
               << " failed (" << summary.ran << " run, " << summary.kept << " kept) in " << seconds_text(summary.seconds)
               << "; archive " << summary.archive.string() << " holds " << plural(summary.archive_targets, "target")
               << (summary.suspect > 0 ? "; xparam inspect ARCHIVE --target NAME says why a target is suspect" : "")
               << "\n";
+      print_intake_totals(summary);
+    }
     const bool suspect_fails = options.fail_on_suspect && summary.suspect > 0;
     return summary.failed > 0 || suspect_fails ? kExitSomeFailed : 0;
   } catch (const std::exception& e) {

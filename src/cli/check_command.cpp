@@ -6,6 +6,7 @@
 #include "core/mesh_builder.h"
 #include "core/orientation.h"
 #include "core/validation.h"
+#include "intake/intake_json.h"
 #include "intake/scan_intake.h"
 #include "io/mesh_reader.h"
 

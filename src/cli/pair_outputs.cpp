@@ -2,8 +2,9 @@
 
 #include "cli/intake_options.h"
 #include "cli/map_options.h"
-#include "intake/filled_surface.h"
 #include "core/orientation.h"
+#include "intake/filled_surface.h"
+#include "intake/intake_json.h"
 #include "io/mesh_writer.h"
 #include "io/text_file.h"
 
@@ -281,8 +282,8 @@ void write_pair_outputs(const std::filesystem::path& dir, const LoadedMesh& sour
   for (int f : mapping.quality.flipped_faces) flipped[f] = 1;
   attributes.face_ints.push_back({"flipped", flipped});
   attributes.vertex_ints.push_back({"on_filled", filled.on_filled});
-  for (size_t f = 0; f < faces.size(); ++f) {
   attributes.vertex_doubles.push_back({"distance_to_scan", filled.distance_to_scan});
+  for (size_t f = 0; f < faces.size(); ++f) {
     const bool on_filled = std::all_of(faces[f].begin(), faces[f].end(), [&](int v) { return filled.on_filled[v] == 1; });
     attributes.face_colors.push_back(flipped[f]  ? kFlippedColor
                                      : on_filled ? kFilledColor

@@ -1,6 +1,7 @@
 // A target with a hole punched into it, mapped by `xparam pair` and by `xparam batch`: each
 // template vertex's distance to the real scan is the same in correspondence.csv, in the archive
-// and in the PLY `xparam export` writes (0 exactly off the filled-in surface, positive on it).
+// and in the PLY `xparam export` writes (0 exactly off the filled-in surface, positive on it), and
+// the batch's summary carries the intake's record and totals.
 #include "intake/intake_damage.h"
 #include "io/archive_reader.h"
 #include "io/mesh_writer.h"
@@ -9,6 +10,7 @@
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstring>
 #include <fstream>
@@ -86,6 +88,11 @@ const DamagedRun& damaged_run() {
   return run;
 }
 
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
 TEST(FilledSurfaceOutputs, DistanceToTheScanIsTheSameInTheCsvTheArchiveAndTheExport) {
   const fs::path& dir = damaged_run().dir;
   const test::CorrespondenceCsv csv = test::read_correspondence_csv(dir / "pair/correspondence.csv");
@@ -120,6 +127,40 @@ TEST(FilledSurfaceOutputs, DistanceToTheScanIsTheSameInTheCsvTheArchiveAndTheExp
   const std::vector<double> exported = exported_distances(dir / "damaged.ply", csv.rows.size());
   for (std::size_t v = 0; v < exported.size(); ++v)
     EXPECT_EQ(exported[v], target.distance_to_scan[static_cast<Eigen::Index>(v)]) << "vertex " << v;
+}
+
+TEST(FilledSurfaceOutputs, BatchSummaryCarriesTheIntakesFiguresPerTargetAndInAll) {
+  const DamagedRun& run = damaged_run();
+  const nlohmann::json summary = read_json(run.dir / "summary.json");
+  const nlohmann::json metrics = read_json(run.dir / "pair/metrics.json");
+  ASSERT_EQ(summary["targets"].size(), 1u);
+  const nlohmann::json& target = summary["targets"][0];
+  // The target's record is metrics.json's (the fill patches' geometry aside).
+  ASSERT_TRUE(target.contains("intake")) << target.dump(1);
+  for (const auto& [key, value] : target["intake"].items()) EXPECT_EQ(value, metrics["intake"][key]) << key;
+  EXPECT_EQ(target["intake"]["steps"], metrics["intake"]["steps"]);
+  EXPECT_EQ(target["intake"]["holes_filled"].size(), 1u);
+
+  const nlohmann::json& totals = summary["intake"];
+  EXPECT_EQ(totals["repaired"], 1);
+  EXPECT_EQ(totals["with_parts_dropped"], 0);
+  EXPECT_EQ(totals["with_holes_filled"], 1);
+  EXPECT_EQ(totals["dropped_faces"], 0);
+  EXPECT_EQ(totals["holes_filled"], 1);
+  EXPECT_EQ(totals["filled_area"], target["metrics"]["filled_area"]);
+  const int on_filled = target["metrics"]["on_filled_vertices"];
+  EXPECT_GE(on_filled, 3);
+  EXPECT_EQ(totals["on_filled_vertices"], on_filled);
+
+  EXPECT_NE(run.batch_log.find(
+                "xparam batch: the intake repaired 1 of 1 target: loose parts dropped from 0 (0 faces), "
+                "holes filled in 1 (1 hole, area "),
+            std::string::npos)
+      << run.batch_log;
+  EXPECT_NE(
+      run.batch_log.find(std::to_string(on_filled) + " template vertices in all land on filled-in surface"),
+      std::string::npos)
+      << run.batch_log;
 }
 
 }  // namespace
