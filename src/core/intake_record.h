@@ -29,7 +29,7 @@ struct IntakeRecord {
   bool applied = false;          ///< the intake prepared the mesh (false: loaded as the file is)
   int merged_vertices = 0;       ///< file vertices welded onto an earlier vertex at equal coordinates
   int unused_vertices = 0;       ///< file vertices no kept face uses
-  int degenerate_faces = 0;      ///< file faces removed: two corners at the same position
+  int degenerate_faces = 0;      ///< file faces removed: zero area (collinear or coincident corners)
   int duplicate_faces = 0;       ///< file faces removed: the same corners as an earlier face
   int split_vertices = 0;        ///< vertex copies made to cut non-manifold edges/vertices open
   int reversed_faces = 0;        ///< faces turned to agree with their neighbours

@@ -41,12 +41,22 @@ std::vector<int> canonical_points(const std::vector<Point>& points, std::map<Poi
   return canonical;
 }
 
-// The triangles as CGAL's soup functions take them.
-std::vector<std::vector<std::size_t>> to_polygons(const std::vector<Triangle>& triangles) {
+// The triangles of non-zero area as CGAL's soup functions take them; `degenerate[j]` says whether
+// triangle j has zero area (exactly: collinear corners, two at one position included). CGAL's soup
+// repair drops triangles with two equal corners but keeps collinear ones, which STL exports hold.
+std::vector<std::vector<std::size_t>> nondegenerate_polygons(const std::vector<Point3>& points,
+                                                             const std::vector<Triangle>& triangles,
+                                                             std::vector<bool>& degenerate) {
   std::vector<std::vector<std::size_t>> polygons;
   polygons.reserve(triangles.size());
-  for (const Triangle& t : triangles)
-    polygons.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
+  degenerate.assign(triangles.size(), false);
+  for (std::size_t j = 0; j < triangles.size(); ++j) {
+    const Triangle& t = triangles[j];
+    degenerate[j] = CGAL::collinear(points[t[0]], points[t[1]], points[t[2]]);
+    if (!degenerate[j])
+      polygons.push_back(
+          {static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
+  }
   return polygons;
 }
 
@@ -75,7 +85,7 @@ RepairedSoup repair_and_orient(const std::vector<Point>& points, const std::vect
   std::map<Point, int> first_at;
   const std::vector<int> canonical = canonical_points(points, first_at);
   // Each input triangle by its corners' canonical points, sorted: CGAL drops all but one of the
-  // triangles sharing a key (duplicates) and every triangle with two equal corners (degenerate).
+  // triangles sharing a key (duplicates); zero-area ones (degenerate) never reach it.
   std::map<std::array<int, 3>, int> first_triangle_with;
   for (std::size_t j = 0; j < triangles.size(); ++j) {
     std::array<int, 3> key{canonical[triangles[j][0]], canonical[triangles[j][1]], canonical[triangles[j][2]]};
@@ -86,11 +96,9 @@ RepairedSoup repair_and_orient(const std::vector<Point>& points, const std::vect
   std::vector<Point3> cgal_points;
   cgal_points.reserve(points.size());
   for (const Point& p : points) cgal_points.push_back(to_cgal(p));
-  std::vector<std::vector<std::size_t>> polygons = to_polygons(triangles);
+  std::vector<bool> degenerate;
+  std::vector<std::vector<std::size_t>> polygons = nondegenerate_polygons(cgal_points, triangles, degenerate);
   PMP::repair_polygon_soup(cgal_points, polygons);
-  // Fewer than three corners after welding: a degenerate triangle CGAL keeps as a segment.
-  polygons.erase(std::remove_if(polygons.begin(), polygons.end(), [](const auto& p) { return p.size() != 3; }),
-                 polygons.end());
   const std::size_t welded_points = cgal_points.size();
   PMP::orient_polygon_soup(cgal_points, polygons);
 
@@ -125,8 +133,7 @@ RepairedSoup repair_and_orient(const std::vector<Point>& points, const std::vect
   std::set<int> kept_sources(out.triangle_source.begin(), out.triangle_source.end());
   for (std::size_t j = 0; j < triangles.size(); ++j) {
     if (kept_sources.count(static_cast<int>(j)) != 0) continue;
-    const std::set<int> corners{canonical[triangles[j][0]], canonical[triangles[j][1]], canonical[triangles[j][2]]};
-    (corners.size() < 3 ? out.degenerate_triangles : out.duplicate_triangles) += 1;
+    (degenerate[j] ? out.degenerate_triangles : out.duplicate_triangles) += 1;
   }
   std::set<int> used;
   for (const Triangle& t : out.triangles)

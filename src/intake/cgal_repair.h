@@ -30,7 +30,7 @@ struct RepairedSoup {
   std::vector<bool> reversed;
   int merged_points = 0;         ///< input points welded onto an earlier point at equal coordinates
   int unused_points = 0;         ///< input points no kept triangle uses
-  int degenerate_triangles = 0;  ///< input triangles removed: two corners at the same position
+  int degenerate_triangles = 0;  ///< input triangles removed: zero area (collinear or coincident corners)
   int duplicate_triangles = 0;   ///< input triangles removed: the same three corners as an earlier one
   /// Points added by orient_polygon_soup to cut open non-manifold edges and vertices and
   /// strips that cannot be oriented (a copy of an input point each).
@@ -38,9 +38,9 @@ struct RepairedSoup {
   int reversed_triangles = 0;  ///< kept triangles stored reversed to agree with their neighbours
 };
 
-/// Repair and orient a soup (CGAL PMP repair_polygon_soup, then orient_polygon_soup), then
-/// record each output element's origin by its exact coordinates (both CGAL steps copy points
-/// bit for bit). Deterministic. \pre every index in [0, #points)
+/// Repair and orient a soup (zero-area triangles dropped, then CGAL PMP repair_polygon_soup, then
+/// orient_polygon_soup), then record each output element's origin by its exact coordinates (both
+/// CGAL steps copy points bit for bit). Deterministic. \pre every index in [0, #points)
 RepairedSoup repair_and_orient(const std::vector<Point>& points, const std::vector<Triangle>& triangles);
 
 /// Connected components of a repaired soup (triangles sharing an edge), as CGAL PMP

@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "io/mesh_reader.h"
 
+#include <algorithm>
 #include <utility>
 #include <variant>
 
@@ -27,9 +28,29 @@ std::vector<IntakeLandmark> landmarks_on_file(const AnchorSet& anchors, const Tr
   return landmarks;
 }
 
+namespace {
+
+// --intake strict: the file as it is. Degenerate triangles are common in STL exports and the intake
+// drops them, so a refusal for them leads with their count and that fix.
+LoadedMesh load_strictly(const std::filesystem::path& path, TriangleSoup soup) {
+  const MeshReport report = validate_soup(soup);
+  const auto first = std::find_if(report.problems.begin(), report.problems.end(),
+                                  [](const Problem& p) { return p.kind == ProblemKind::DegenerateFace; });
+  if (report.usable || first == report.problems.end()) return load_soup(path, std::move(soup));
+  const std::size_t count = report.degenerate_faces.size();
+  const std::string prefix = soup.source + ": ";
+  throw InputError(
+      prefix + std::to_string(count) + (count == 1 ? " degenerate face" : " degenerate faces") +
+      " (zero area, or corners at one position; the first: " + first->message.substr(prefix.size()) +
+      "): the intake drops them: leave out --intake strict, or delete them in a mesh editor");
+}
+
+}  // namespace
+
 LoadedMesh load_scan_soup(const std::filesystem::path& path, TriangleSoup soup, const AnchorSet& anchors,
                           const IntakeSettings& settings) {
-  if (settings.mode == IntakeMode::Strict || validate_soup(soup).usable) return load_soup(path, std::move(soup));
+  if (settings.mode == IntakeMode::Strict) return load_strictly(path, std::move(soup));
+  if (validate_soup(soup).usable) return load_soup(path, std::move(soup));
   const auto file_vertices = static_cast<int>(soup.vertices.size());
   const auto file_faces = static_cast<int>(soup.triangles.size());
   PreparedScan prepared = prepare_scan(soup, landmarks_on_file(anchors, soup), settings);

@@ -1,7 +1,9 @@
 // STL parser for read_triangle_soup. A binary file is recognized by the size its header
 // implies (84 + 50 n bytes), never by its first bytes: binary exporters often start the header
 // with "solid" too. STL lists corner positions, so corners with equal coordinates are welded
-// into one vertex, numbered in order of first appearance.
+// into one vertex, numbered in order of first appearance. A triangle whose corners weld into one
+// or two vertices (common in STL exports) is kept: validation calls it degenerate, the scan
+// intake drops it, and every later triangle keeps its file index.
 #include "io/mesh_read_common.h"
 #include "io/mesh_read_formats.h"
 #include "io/soup_builder.h"
@@ -80,11 +82,7 @@ class Welder {
     for (std::size_t t = 0; t < triangle_count; ++t) {
       const std::array<std::int64_t, 3> corners = {corner_vertex[3 * t], corner_vertex[3 * t + 1],
                                                    corner_vertex[3 * t + 2]};
-      const FileLocation where = location(t);
-      if (corners[0] == corners[1] || corners[1] == corners[2] || corners[0] == corners[2]) {
-        builder.fail(describe("triangle", where) + " has two corners at the same position");
-      }
-      builder.add_face(corners, where);
+      builder.add_welded_triangle(corners, location(t));
     }
     return builder.finish();
   }

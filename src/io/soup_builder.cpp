@@ -74,6 +74,16 @@ void SoupBuilder::add_face(std::span<const std::int64_t> corners, FileLocation w
   ++faces_;
 }
 
+void SoupBuilder::add_welded_triangle(const std::array<std::int64_t, 3>& corners, FileLocation where) {
+  for (const std::int64_t c : corners)
+    if (c < 0 || static_cast<std::uint64_t>(c) >= vertex_count_)
+      fail(describe("triangle", where) + " refers to vertex " + std::to_string(c) + " but the file has " +
+           std::to_string(vertex_count_) + " vertices");
+  soup_.triangles.push_back(
+      {static_cast<int>(corners[0]), static_cast<int>(corners[1]), static_cast<int>(corners[2])});
+  ++faces_;
+}
+
 TriangleSoup SoupBuilder::finish() {
   // Every parser reads exactly the declared vertices or throws on the way.
   XP_ASSERT_EQ(soup_.vertices.size(), vertex_count_);

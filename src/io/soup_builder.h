@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -39,6 +40,12 @@ class SoupBuilder {
   /// outside [0, vertex_count) or an index repeated within the polygon. Linear in the corners
   /// (a scanned polygon may have hundreds of thousands).
   void add_face(std::span<const std::int64_t> corners, FileLocation where);
+
+  /// Appends a triangle of welded corner positions (STL lists positions, not indices): corners
+  /// that welded into one vertex are kept as they are, so the soup's triangles stay the file's and
+  /// validation reports the triangle as degenerate (the scan intake drops it). Throws InputError
+  /// for an index outside [0, vertex_count).
+  void add_welded_triangle(const std::array<std::int64_t, 3>& corners, FileLocation where);
 
   /// The vertex count given to the constructor.
   std::size_t vertex_count() const { return vertex_count_; }
