@@ -182,7 +182,18 @@ IntakeSettings intake_before_it_existed() {
   return intake;
 }
 
-std::string implied_options_json() { return batch_options_json({}, {}, intake_before_it_existed()); }
+std::string implied_options_json() {
+  PairSettings before;
+  before.cross_map.relax = false;
+  before.retry_keeping_corners = false;
+  before.tip_anchors = false;
+  before.extremity_anchors = false;
+  before.untangle = false;
+  before.max_released_anchors = 0;
+  before.optimize_map = false;
+  before.work_vertices = 0;
+  return batch_options_json(before, {}, intake_before_it_existed());
+}
 
 IntakeSettings recorded_intake(const std::string& options_json) {
   IntakeSettings intake;

@@ -122,9 +122,11 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
                                const IntakeSettings& intake = {});
 
 /// What an archive's options imply for an option they do not record (written before the option
-/// existed): the behaviour then, which is each option's default (batch_options_json of default
-/// settings), except the intake's mode: before the intake, every target was taken as it was
-/// (strict). A resumed run compares against it (io/options_difference.h).
+/// existed): the behaviour then. A stage that came with its own switch, on by default, did not
+/// run before it (the relaxation, the second layout, helper anchors behind and at tips, the
+/// untangling, anchor releases, the map optimization, the working copy: off, 0 releases, no
+/// copy), and before the intake every target was taken as it was (strict); every other option
+/// had its default. A resumed run compares against it (io/options_difference.h).
 std::string implied_options_json();
 
 /// The intake settings of a run from before the intake existed: strict, the other limits at their

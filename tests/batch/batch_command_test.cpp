@@ -105,12 +105,11 @@ TEST(BatchCommand, UsageAndFatalErrorsHaveTheirExitCodes) {
   EXPECT_FALSE(std::filesystem::exists(dir / "a.h5"));
 }
 
-// An archive written before --work-vertices existed: its options have no "work_vertices". Its one
-// target, the woman, is committed as failed with her files' digests, so a resume keeps it and maps
-// nothing.
-void write_archive_predating_work_vertices(const path& archive, const path& targets) {
+// An archive written before `option` existed: its options do not have it. Its one target, the
+// woman, is committed as failed with her files' digests, so a resume keeps it and maps nothing.
+void write_archive_predating(const std::string& option, const path& archive, const path& targets) {
   nlohmann::ordered_json options = nlohmann::ordered_json::parse(batch_options_json({}));
-  ASSERT_EQ(options.erase("work_vertices"), 1u);
+  ASSERT_EQ(options.erase(option), 1u);
   const PreparedTemplate prepared = prepare_template(test::man_template());
   BatchArchive batch = BatchArchive::create(archive, prepared.record, current_provenance(options.dump()));
   TargetRecord woman;
@@ -124,31 +123,53 @@ void write_archive_predating_work_vertices(const path& archive, const path& targ
   batch.finish();
 }
 
-TEST(BatchCommand, AnArchiveOlderThanAnOptionResumesAtItsDefaultOnly) {
-  const path dir = test::fresh_temp_dir("command_resume_older_options");
-  test::copy_sample_targets(dir / "targets", {"woman"});
-  const path archive = dir / "old.h5";
-  write_archive_predating_work_vertices(archive, dir / "targets");
-  const std::string before = test::read_file(archive);
-  const std::string run = man_template_options() + " --targets " + quoted(dir / "targets") + " --out " +
-                          quoted(archive) + " --resume";
+// The command resuming an archive in `dir` from the woman's folder.
+std::string resume_command(const path& dir, const path& archive) {
+  return man_template_options() + " --targets " + quoted(dir / "targets") + " --out " + quoted(archive) +
+         " --resume";
+}
 
-  // Another value than the one the archive ran with (the default then): refused, naming both.
-  EXPECT_EQ(batch(dir, run + " --work-vertices 5000"), 3);
-  const std::string refusal = test::read_file(dir / "stderr.txt");
-  EXPECT_NE(
-      refusal.find("option \"work_vertices\" is not recorded (the archive predates it: 100000), now 5000"),
-      std::string::npos)
-      << refusal;
-  EXPECT_EQ(test::read_file(archive), before);
-
-  // The default: the archive's own behaviour, so the run continues it (the failed target kept).
+// Resuming `archive` with `run` continues it: its failed target is kept, nothing refused.
+void expect_continued(const path& dir, const path& archive, const std::string& run) {
   EXPECT_EQ(batch(dir, run), 2) << test::read_file(dir / "stderr.txt");
   const std::string log = test::read_file(dir / "stderr.txt");
   EXPECT_EQ(log.find("cannot resume"), std::string::npos) << log;
   const ArchiveReader resumed(archive);
   ASSERT_EQ(resumed.targets().size(), 1u);
   EXPECT_EQ(resumed.targets()[0].error, "woman.obj: mapped by an older xparam");
+}
+
+// Resuming `archive` with `run` is refused with `message`, the archive left byte-identical.
+void expect_refused(const path& dir, const path& archive, const std::string& run, const std::string& message) {
+  const std::string before = test::read_file(archive);
+  EXPECT_EQ(batch(dir, run), 3);
+  const std::string refusal = test::read_file(dir / "stderr.txt");
+  EXPECT_NE(refusal.find(message), std::string::npos) << refusal;
+  EXPECT_EQ(test::read_file(archive), before);
+}
+
+TEST(BatchCommand, AnArchiveOlderThanAnOptionResumesAtItsDefaultOnly) {
+  const path dir = test::fresh_temp_dir("command_resume_older_options");
+  test::copy_sample_targets(dir / "targets", {"woman"});
+  const path archive = dir / "old.h5";
+  write_archive_predating("max_maps", archive, dir / "targets");
+  const std::string run = resume_command(dir, archive);
+  expect_refused(dir, archive, run + " --max-maps 4",
+                 "option \"max_maps\" is not recorded (the archive predates it: 6), now 4");
+  expect_continued(dir, archive, run);
+}
+
+// A stage that came with its own switch, on by default, did not run before it: such an archive
+// continues with the stage off only.
+TEST(BatchCommand, AnArchiveOlderThanAStagesSwitchResumesWithTheStageOffOnly) {
+  const path dir = test::fresh_temp_dir("command_resume_older_stage");
+  test::copy_sample_targets(dir / "targets", {"woman"});
+  const path archive = dir / "old.h5";
+  write_archive_predating("work_vertices", archive, dir / "targets");
+  const std::string run = resume_command(dir, archive);
+  expect_refused(dir, archive, run,
+                 "option \"work_vertices\" is not recorded (the archive predates it: 0), now 100000");
+  expect_continued(dir, archive, run + " --work-vertices 0");
 }
 
 }  // namespace
