@@ -99,6 +99,7 @@ inline void report_pair_seconds(benchmark::State& state, const PairSeconds& sum,
   state.counters["s_layout"] = sum.layout / iterations;
   state.counters["s_optimize"] = sum.optimize / iterations;
   state.counters["s_parameterize"] = sum.parameterize / iterations;
+  state.counters["s_relax"] = sum.relax / iterations;  // inside s_parameterize
   state.counters["s_compose"] = sum.compose / iterations;
   state.counters["s_untangle"] = sum.untangle / iterations;
   state.counters["s_optimize_map"] = sum.optimize_map / iterations;
