@@ -67,7 +67,7 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "off gives the layout's map)");
   command
       .add_option("--map-sweeps", settings.map_optimization.max_sweeps,
-                  "Sweeps over the template's vertices that optimizing the map runs at most (default 200)")
+                  "Sweeps over the template's vertices that optimizing the map runs at most (default 100)")
       ->check(CLI::Range(0, 100000));
   command
       .add_option("--map-coverage", settings.map_optimization.coverage_weight,

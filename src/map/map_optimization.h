@@ -50,7 +50,7 @@ namespace xparam {
 
 /// Options of optimize_map.
 struct MapOptimizationSettings {
-  int max_sweeps = 200;      ///< sweeps over every free vertex, at most
+  int max_sweeps = 100;      ///< sweeps over every free vertex, at most
   double tolerance = 1e-4;   ///< stop when a sweep lowers the mean energy by less than this fraction of it
   double area_weight = 1.0;  ///< lambda: the area term's weight against the conformal term
   /// Weight of the coverage term against the distortion (0: none). Each target vertex farther
