@@ -507,8 +507,8 @@ int lost_faces(const PairMapping& map) {
 }
 
 // A map through tips that loses this many times fewer faces (lost_faces) than the map without
-// them replaces it although it folds more (SHREC'19 1 [29 anthropometric]: 5 strictly folded
-// and 1 grossly stretched face against 342 grossly stretched over the target's hand).
+// them replaces it although it folds more (SHREC'19 1 [29 anthropometric]: 4 strictly folded
+// and 4 grossly stretched faces against 342 grossly stretched over the target's hand).
 constexpr int kFarFewerLost = 10;
 
 // Whether a map through helper anchors at protrusion tips replaces `current`: less stretched,
