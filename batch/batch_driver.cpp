@@ -152,6 +152,8 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
   options["intake"]["max_dropped_area"] = intake.max_dropped_area;
   options["intake"]["max_hole"] = intake.max_hole;
   options["intake"]["max_hole_relative"] = intake.max_hole_relative;
+  options["intake"]["max_handle"] = intake.max_handle;
+  options["intake"]["max_handle_relative"] = intake.max_handle_relative;
   options["placement"]["snap_tolerance"] = settings.placement.snap_tolerance;
   options["placement"]["warn_snap_distance"] = settings.placement.warn_snap_distance;
   options["layout"]["greedy_diagonals"] = settings.layout.greedy_diagonals;
@@ -179,6 +181,9 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
 IntakeSettings intake_before_it_existed() {
   IntakeSettings intake;
   intake.mode = IntakeMode::Strict;
+  // Handles came later still: before them, every handle was refused (--max-handle 0).
+  intake.max_handle = 0.0;
+  intake.max_handle_relative = 0.0;
   return intake;
 }
 
@@ -206,6 +211,9 @@ IntakeSettings recorded_intake(const std::string& options_json) {
     intake.max_dropped_area = recorded.at("max_dropped_area").get<double>();
     intake.max_hole = recorded.at("max_hole").get<double>();
     intake.max_hole_relative = recorded.at("max_hole_relative").get<double>();
+    const IntakeSettings before = intake_before_it_existed();
+    intake.max_handle = recorded.value("max_handle", before.max_handle);
+    intake.max_handle_relative = recorded.value("max_handle_relative", before.max_handle_relative);
   } catch (const nlohmann::json::exception& e) {
     throw ArchiveError("the recorded options' \"intake\" is not as xparam batch writes it (" + std::string(e.what()) +
                        "): " + options_json);

@@ -36,12 +36,14 @@ struct CheckedFile {
   std::optional<MeshReport> report;
   std::optional<double> signed_volume;  // only for usable meshes (closed, so it is meaningful)
   std::string error;                    // reading or building failed
-  // The intake's verdict on a file validation refuses (IntakeMode::Repair): what it would do and
-  // the validation of its result, or why it refuses.
+  // The intake's verdict on a file validation refuses or of genus > 0 (IntakeMode::Repair): what
+  // it would do and the validation of its result, or why it refuses.
   std::optional<IntakeRecord> intake;
   std::optional<MeshReport> after_intake;
   std::string intake_error;
-  bool usable_as_is() const { return report && report->usable && error.empty(); }
+  // A file of genus > 0 whose handles the intake cuts is usable after the intake; one whose handle
+  // it refuses stays usable as it is (for a template of its genus), with a note.
+  bool usable_as_is() const { return report && report->usable && error.empty() && !intake; }
   bool usable() const { return usable_as_is() || (after_intake && after_intake->usable); }
 };
 
@@ -54,7 +56,9 @@ CheckedFile check_file(const std::string& file, const ValidationSettings& settin
     // Building proves OpenMesh accepts what validation called usable (repaired as the loader does).
     const bool repaired = !report.reoriented_faces.empty() || !report.split_vertices.empty();
     if (report.usable) checked.signed_volume = signed_volume(build_mesh(repaired ? repair_soup(soup).soup : soup));
-    if (!report.usable && intake.mode == IntakeMode::Repair && settings.repair) {
+    // A usable file of genus > 0 goes through the intake too, which cuts its handles.
+    const bool has_handles = report.usable && report.genus.value_or(0) > 0;
+    if ((!report.usable || has_handles) && intake.mode == IntakeMode::Repair && settings.repair) {
       try {
         // Without anchors the largest part is kept, as a target's anchors usually choose it.
         const PreparedScan prepared = prepare_scan(soup, {}, intake);
@@ -184,7 +188,9 @@ void print_human(const CheckedFile& checked, std::ostream& out) {
   const MeshReport* final_report = checked.after_intake ? &*checked.after_intake : checked.report ? &*checked.report : nullptr;
   if (checked.usable() && final_report && final_report->genus && *final_report->genus != 0)
     out << "  note: genus " << *final_report->genus << ": pair and batch map genus-0 templates and refuse it "
-        << "(close the handle in a mesh editor)\n";
+        << "(close the handle in a mesh editor"
+        << (checked.intake_error.empty() ? "; without --intake strict the intake cuts handles up to --max-handle" : "")
+        << ")\n";
   if (!checked.error.empty()) out << "  error: " << checked.error << "\n";
 }
 

@@ -8,8 +8,8 @@
 
 namespace xparam::cli {
 
-/// Add `--intake repair|strict`, `--max-dropped-area PERCENT` and `--max-hole LENGTH` to `command`,
-/// writing into `settings`, which must outlive the parse.
+/// Add `--intake repair|strict`, `--max-dropped-area PERCENT`, `--max-hole LENGTH` and
+/// `--max-handle LENGTH` to `command`, writing into `settings`, which must outlive the parse.
 void add_intake_options(CLI::App& command, IntakeSettings& settings);
 
 }  // namespace xparam::cli

@@ -37,6 +37,7 @@ double IntakeRecord::dropped_area() const {
 double IntakeRecord::filled_area() const {
   double area = 0.0;
   for (const FilledHole& hole : holes) area += hole.area;
+  for (const CutHandle& handle : handles) area += handle.area;
   return area;
 }
 
@@ -58,6 +59,11 @@ std::vector<std::string> IntakeRecord::describe() const {
                     (hole.nearest_anchor.empty() ? std::string() : " near \"" + hole.nearest_anchor + "\"") +
                     " filled (" + plural(hole.faces, "face", "faces") + ", area " + length(hole.area) +
                     (hole.faired ? "" : ", not faired") + ")");
+  for (const CutHandle& handle : handles)
+    lines.push_back("handle cut along a loop of length " + length(handle.length) +
+                    (handle.nearest_anchor.empty() ? std::string() : " near \"" + handle.nearest_anchor + "\"") +
+                    " and capped (" + plural(handle.faces, "face", "faces") + ", area " + length(handle.area) +
+                    (handle.faired ? "" : ", not faired") + ")");
   return lines;
 }
 

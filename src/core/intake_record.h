@@ -24,6 +24,17 @@ struct FilledHole {
   std::string nearest_anchor; ///< the anchor nearest to the border ("" when none was given)
 };
 
+/// A handle (genus) of the file cut open along its shortest non-contractible cycle, both sides
+/// closed by refined, faired caps.
+struct CutHandle {
+  double length = 0.0;        ///< length of the cycle cut along, mesh units
+  int faces = 0;              ///< triangles of both caps
+  int vertices = 0;           ///< vertices the caps added (and copies of fill vertices on the cycle)
+  double area = 0.0;          ///< area of both caps, mesh units squared
+  bool faired = false;        ///< both caps faired (else refined, not faired)
+  std::string nearest_anchor; ///< the anchor nearest to the cycle ("" when none was given)
+};
+
 /// Every change the intake made, in file terms. All zero / empty when it changed nothing.
 struct IntakeRecord {
   bool applied = false;          ///< the intake prepared the mesh (false: loaded as the file is)
@@ -37,13 +48,14 @@ struct IntakeRecord {
   std::vector<DroppedPart> dropped_parts;  ///< largest first
   double total_area = 0.0;       ///< area of all parts, mesh units squared
   std::vector<FilledHole> holes; ///< in the order of their patches' faces
-  int filled_faces = 0;          ///< faces of all patches (numbered after the file's faces)
-  int filled_vertices = 0;       ///< vertices of all patches (numbered after the file's vertices)
+  std::vector<CutHandle> handles; ///< in the order they were cut, after the holes were filled
+  int filled_faces = 0;          ///< faces of all patches and caps (numbered after the file's faces)
+  int filled_vertices = 0;       ///< vertices of all patches and caps (numbered after the file's vertices)
 
   /// Faces and area of all dropped parts.
   int dropped_faces() const;
   double dropped_area() const;
-  /// Area of all patches.
+  /// Area of all patches and caps.
   double filled_area() const;
   /// One line per kind of change, e.g. "11 parts: 10 dropped (412 faces, 0.3% of the area)";
   /// empty when nothing changed.

@@ -14,6 +14,14 @@ nlohmann::json intake_json(const IntakeRecord& record) {
                      {"area", hole.area},
                      {"faired", hole.faired},
                      {"nearest_anchor", hole.nearest_anchor}});
+  nlohmann::json handles = nlohmann::json::array();
+  for (const CutHandle& handle : record.handles)
+    handles.push_back({{"length", handle.length},
+                       {"faces", handle.faces},
+                       {"vertices", handle.vertices},
+                       {"area", handle.area},
+                       {"faired", handle.faired},
+                       {"nearest_anchor", handle.nearest_anchor}});
   return {{"applied", record.applied},
           {"merged_vertices", record.merged_vertices},
           {"unused_vertices", record.unused_vertices},
@@ -27,6 +35,7 @@ nlohmann::json intake_json(const IntakeRecord& record) {
           {"dropped_area", record.dropped_area()},
           {"total_area", record.total_area},
           {"holes_filled", holes},
+          {"handles_cut", handles},
           {"filled_faces", record.filled_faces},
           {"filled_vertices", record.filled_vertices},
           {"filled_area", record.filled_area()},

@@ -2,6 +2,8 @@
 
 #include "core/errors.h"
 #include "intake/cgal_repair.h"
+#include "intake/cgal_topology.h"
+#include "intake/handle_cut.h"
 
 #include <Eigen/Geometry>
 
@@ -11,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <set>
 
 namespace xparam {
 namespace {
@@ -113,6 +116,92 @@ Parts choose_part(const intake::RepairedSoup& repaired, const std::vector<Intake
   return parts;
 }
 
+// The landmark nearest to any of `border` (indices into `points`); "" when none is given.
+std::string nearest_landmark(const std::vector<Point>& points, const std::vector<int>& border,
+                             const std::vector<IntakeLandmark>& landmarks) {
+  std::string near;
+  double best = std::numeric_limits<double>::infinity();
+  for (const IntakeLandmark& landmark : landmarks) {
+    const double d = nearest(points, border, landmark.position).second;
+    if (d < best) {
+      best = d;
+      near = landmark.name;
+    }
+  }
+  return near;
+}
+
+// Genus of a closed mesh of one component whose points are all used (E = 3F/2).
+int closed_genus(const std::vector<Point>& points, const std::vector<Triangle>& triangles) {
+  const long long euler = static_cast<long long>(points.size()) - static_cast<long long>(triangles.size()) / 2;
+  return static_cast<int>((2 - euler) / 2);
+}
+
+// Step 4: while the closed mesh has genus > 0, cut it open along a short non-contractible cycle
+// (intake::short_non_contractible_cycle) and cap both sides like holes; refuse a cycle longer than the limit. The cut's copies and
+// the caps' points are appended to `points` (their sources to `vertex_source`), the caps' faces
+// to `triangles`.
+void cut_handles(std::vector<Point>& points, std::vector<Triangle>& triangles, std::vector<int>& vertex_source,
+                 IntakeRecord& record, const std::vector<IntakeLandmark>& landmarks, const IntakeSettings& settings,
+                 const std::string& source, double diagonal, int file_vertices) {
+  const double max_handle = settings.max_handle > 0.0 ? settings.max_handle : settings.max_handle_relative * diagonal;
+  for (int genus = closed_genus(points, triangles); genus > 0;) {
+    const std::vector<int> cycle = intake::short_non_contractible_cycle(points, triangles);
+    CutHandle handle;
+    for (std::size_t i = 0; i < cycle.size(); ++i)
+      handle.length += (vec(points[cycle[i]]) - vec(points[cycle[(i + 1) % cycle.size()]])).norm();
+    handle.nearest_anchor = nearest_landmark(points, cycle, landmarks);
+    const std::string what = "handle (genus " + std::to_string(genus) + ") with a loop of " +
+                             number(handle.length) +
+                             (handle.nearest_anchor.empty() ? std::string() : " at \"" + handle.nearest_anchor + "\"");
+    const std::string limit = max_handle == 0.0          ? "0 (no handle is cut)"
+                              : settings.max_handle > 0.0 ? number(max_handle)
+                                                          : number(max_handle) + " (" +
+                                                                percent(settings.max_handle_relative) +
+                                                                " of the bounding-box diagonal)";
+    if (handle.length > max_handle)
+      throw InputError(source + ": " + what + " is over --max-handle " + limit +
+                       ": close the handle (a tunnel where two surfaces touch) in a mesh editor, or raise "
+                       "--max-handle if caps may cut it");
+    if (std::set<int>(cycle.begin(), cycle.end()).size() != cycle.size() || cycle.size() < 3)
+      throw InputError(source + ": " + what + ": the loop passes a vertex twice and cannot be cut open; close the "
+                       "handle in a mesh editor");
+
+    // A copy of a fill vertex is one more fill vertex, so fill vertices stay numbered in order.
+    for (int copied : intake::cut_along_cycle(points, triangles, cycle)) {
+      const bool of_fill = vertex_source[copied] >= file_vertices;
+      vertex_source.push_back(of_fill ? file_vertices + record.filled_vertices : vertex_source[copied]);
+      record.filled_vertices += of_fill;
+      handle.vertices += of_fill;
+    }
+    intake::FilledSoup capped =
+        intake::fill_holes(points, triangles, {std::numeric_limits<double>::infinity()});
+    XP_ASSERT_EQ(capped.holes.size(), 2u);
+    handle.faired = true;
+    for (const intake::Hole& cap : capped.holes) {
+      if (cap.self_intersecting)
+        throw InputError(source + ": the caps closing the " + what +
+                         " after cutting it open intersect the surface: close the handle in a mesh editor");
+      handle.faces += cap.triangles;
+      handle.vertices += cap.points;
+      handle.area += cap.area;
+      handle.faired = handle.faired && cap.faired;
+      for (int m = 0; m < cap.points; ++m) vertex_source.push_back(file_vertices + record.filled_vertices++);
+    }
+    record.filled_faces += handle.faces;
+    record.handles.push_back(handle);
+    points = std::move(capped.points);
+    triangles = std::move(capped.triangles);
+    const std::vector<int> parts = intake::triangle_components(points, triangles);
+    if (*std::max_element(parts.begin(), parts.end()) > 0)
+      throw InputError(source + ": " + what + ": the loop separates the surface, so cutting it leaves two parts; "
+                       "close the handle in a mesh editor");
+    const int cut_genus = closed_genus(points, triangles);
+    XP_ASSERT_MSG(cut_genus < genus, "cutting a handle left genus " << cut_genus << " of " << genus);
+    genus = cut_genus;
+  }
+}
+
 }  // namespace
 
 PreparedScan prepare_scan(const TriangleSoup& soup, const std::vector<IntakeLandmark>& landmarks,
@@ -175,17 +264,9 @@ PreparedScan prepare_scan(const TriangleSoup& soup, const std::vector<IntakeLand
 
   // Step 3: holes.
   const double max_hole = settings.max_hole > 0.0 ? settings.max_hole : settings.max_hole_relative * diagonal;
-  const intake::FilledSoup filled = intake::fill_holes(kept_points, kept_triangles, {max_hole});
+  intake::FilledSoup filled = intake::fill_holes(kept_points, kept_triangles, {max_hole});
   for (const intake::Hole& hole : filled.holes) {
-    std::string near;
-    double best = std::numeric_limits<double>::infinity();
-    for (const IntakeLandmark& landmark : landmarks) {
-      const double d = nearest(filled.points, hole.border, landmark.position).second;
-      if (d < best) {
-        best = d;
-        near = landmark.name;
-      }
-    }
+    const std::string near = nearest_landmark(filled.points, hole.border, landmarks);
     const std::string where = "hole of " + number(hole.perimeter) + " perimeter" +
                               (near.empty() ? std::string() : " at \"" + near + "\"");
     if (!hole.filled)
@@ -200,11 +281,15 @@ PreparedScan prepare_scan(const TriangleSoup& soup, const std::vector<IntakeLand
     record.filled_faces += hole.triangles;
     record.filled_vertices += hole.points;
   }
+  for (int m = 0; m < record.filled_vertices; ++m) out.vertex_source.push_back(file_vertices + m);
+
+  // Step 4: handles.
+  cut_handles(filled.points, filled.triangles, out.vertex_source, record, landmarks, settings, soup.source, diagonal,
+              file_vertices);
   for (int k = 0; k < record.filled_faces; ++k) {
     out.face_source.push_back(file_faces + k);
     out.reversed.push_back(false);
   }
-  for (int m = 0; m < record.filled_vertices; ++m) out.vertex_source.push_back(file_vertices + m);
 
   // The inverse maps; a welded file vertex goes where the first vertex at its coordinates went.
   out.prepared_face_of_file.assign(soup.triangles.size(), -1);

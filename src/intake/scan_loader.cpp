@@ -50,7 +50,9 @@ LoadedMesh load_strictly(const std::filesystem::path& path, TriangleSoup soup) {
 LoadedMesh load_scan_soup(const std::filesystem::path& path, TriangleSoup soup, const AnchorSet& anchors,
                           const IntakeSettings& settings) {
   if (settings.mode == IntakeMode::Strict) return load_strictly(path, std::move(soup));
-  if (validate_soup(soup).usable) return load_soup(path, std::move(soup));
+  const MeshReport report = validate_soup(soup);
+  // A usable file of genus > 0 goes through the intake too: its handles are cut (step 4).
+  if (report.usable && report.genus.value_or(0) == 0) return load_soup(path, std::move(soup));
   const auto file_vertices = static_cast<int>(soup.vertices.size());
   const auto file_faces = static_cast<int>(soup.triangles.size());
   PreparedScan prepared = prepare_scan(soup, landmarks_on_file(anchors, soup), settings);

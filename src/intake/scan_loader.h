@@ -19,8 +19,8 @@ std::vector<IntakeLandmark> landmarks_on_file(const AnchorSet& anchors, const Tr
 /// What the intake makes of a soup read from `path`: the loaded mesh (LoadedMesh::intake says what
 /// changed; `file_order` maps every mesh face and vertex to the file, fill elements numbered after
 /// the file's). With IntakeMode::Strict, or when validation finds the file usable (its two load
-/// repairs included), this is load_soup: the intake runs only on files the pipeline would refuse
-/// (strict refuses degenerate faces by their count, saying the intake drops them).
+/// repairs included) and of genus 0, this is load_soup: the intake runs only on files the pipeline
+/// would refuse (strict refuses degenerate faces by their count, saying the intake drops them).
 /// \throw InputError naming the file: what prepare_scan refuses, or what is still wrong after it.
 LoadedMesh load_scan_soup(const std::filesystem::path& path, TriangleSoup soup, const AnchorSet& anchors,
                           const IntakeSettings& settings);

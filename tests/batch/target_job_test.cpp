@@ -41,7 +41,7 @@ TEST(TargetJob, BrokenTargetsFailWithTheirReasonAndFile) {
   };
   for (const Expectation& e : {Expectation{"truncated", "truncated.obj", "truncated.obj"},
                                Expectation{"no_anchors", "no_anchors.obj", "no anchors"},
-                               Expectation{"torus", "torus.ply", "genus mismatch"},
+                               Expectation{"torus", "torus.ply", "--max-handle"},
                                Expectation{"unknown_name", "unknown_name.anchors.json", "NOT_A_LANDMARK"}}) {
     SCOPED_TRACE(e.name);
     const TargetSpec& target = spec(targets, e.name);

@@ -24,16 +24,26 @@ TEST(TargetReload, IntakeSettingsComeBackFromTheRecordedOptions) {
   written.max_dropped_area = 0.03;
   written.max_hole = 0.2;
   written.max_hole_relative = 0.1;
+  written.max_handle = 0.04;
+  written.max_handle_relative = 0.02;
   const IntakeSettings read = recorded_intake(batch_options_json({}, {}, written));
   EXPECT_EQ(read.mode, IntakeMode::Repair);
   EXPECT_EQ(read.max_dropped_area, 0.03);
   EXPECT_EQ(read.max_hole, 0.2);
   EXPECT_EQ(read.max_hole_relative, 0.1);
+  EXPECT_EQ(read.max_handle, 0.04);
+  EXPECT_EQ(read.max_handle_relative, 0.02);
   written.mode = IntakeMode::Strict;
   EXPECT_EQ(recorded_intake(batch_options_json({}, {}, written)).mode, IntakeMode::Strict);
   // Archives from before the intake took every target as it was.
   EXPECT_EQ(recorded_intake("{}").mode, IntakeMode::Strict);
   EXPECT_THROW(recorded_intake(R"({"intake": {"mode": "repair"}})"), ArchiveError);
+  // Archives from before handles were cut refused every handle.
+  const IntakeSettings before_handles = recorded_intake(
+      R"({"intake": {"mode": "repair", "max_dropped_area": 0.1, "max_hole": 0, "max_hole_relative": 0.25}})");
+  EXPECT_EQ(before_handles.mode, IntakeMode::Repair);
+  EXPECT_EQ(before_handles.max_handle, 0.0);
+  EXPECT_EQ(before_handles.max_handle_relative, 0.0);
 }
 
 TEST(TargetReload, AFileThatNeededTheIntakeIsPreparedAgain) {
