@@ -26,10 +26,15 @@ struct DecimationSettings {
   /// (collapses on a midpoint-subdivided mesh put three collinear vertices in one face without
   /// it). 0: no limit.
   double max_aspect_ratio = 0.0;
+  /// 0: every candidate collapse waits in a priority queue and the cheapest goes first (OpenMesh's
+  /// DecimaterT). k > 0: multiple choice (Wu and Kobbelt 2002): each collapse is the cheapest of k
+  /// edges drawn at random (a fixed seed), which re-evaluates no neighbourhood after a collapse:
+  /// several times faster on a million vertices, at the cost of a slightly less even result.
+  int choices = 0;
 };
 
 /// `mesh` (only its points and faces are read) decimated by quadric-error edge collapses (the
-/// cheapest first, within `settings`) down to `vertices` vertices, or as far as legal collapses
+/// cheapest first, or the cheapest of a few: DecimationSettings::choices; within `settings`) down to `vertices` vertices, or as far as legal collapses
 /// go (check mesh.n_vertices()). No vertex of `locked` is removed, and a face whose three corners
 /// are locked is kept as it is. Deterministic: the same input always gives the same mesh, in the
 /// same order.
