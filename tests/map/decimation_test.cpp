@@ -67,8 +67,8 @@ TEST(SampledDecimation, IsTheSameMeshOnEveryRun) {
 }
 
 // Multiple choice trades some evenness for speed, not the shape. Measured by the largest distance
-// from a vertex of the input to the nearest kept one: one draw per collapse (a random order) gives
-// 1.6 times the greedy decimation's and fails this.
+// from a vertex of the input (every 29th) to the nearest kept one: one draw per collapse (a random
+// order) gives twice the greedy decimation's and fails this.
 TEST(SampledDecimation, KeepsVerticesAsSpreadAsTheGreedyDecimation) {
   DecimationSettings greedy = sampled();
   greedy.choices = 0;
@@ -76,7 +76,7 @@ TEST(SampledDecimation, KeepsVerticesAsSpreadAsTheGreedyDecimation) {
     double largest = 0.0;
     std::vector<Eigen::Vector3d> kept;
     for (VertexHandle v : decimated.mesh.vertices()) kept.push_back(position(decimated.mesh, v));
-    for (int v = 0; v < static_cast<int>(fine_man().n_vertices()); v += 7) {
+    for (int v = 0; v < static_cast<int>(fine_man().n_vertices()); v += 29) {
       const Eigen::Vector3d p = position(fine_man(), fine_man().vertex_handle(v));
       double nearest = std::numeric_limits<double>::infinity();
       for (const Eigen::Vector3d& q : kept) nearest = std::min(nearest, (p - q).squaredNorm());
