@@ -33,10 +33,11 @@ namespace {
 // --intake strict: the file as it is. Degenerate triangles are common in STL exports and the intake
 // drops them, so a refusal for them leads with their count and that fix.
 LoadedMesh load_strictly(const std::filesystem::path& path, TriangleSoup soup) {
-  const MeshReport report = validate_soup(soup);
+  MeshReport report = validate_soup(soup);
   const auto first = std::find_if(report.problems.begin(), report.problems.end(),
                                   [](const Problem& p) { return p.kind == ProblemKind::DegenerateFace; });
-  if (report.usable || first == report.problems.end()) return load_soup(path, std::move(soup));
+  if (report.usable || first == report.problems.end())
+    return load_validated_soup(path, std::move(soup), std::move(report));
   const std::size_t count = report.degenerate_faces.size();
   const std::string prefix = soup.source + ": ";
   throw InputError(
@@ -50,9 +51,10 @@ LoadedMesh load_strictly(const std::filesystem::path& path, TriangleSoup soup) {
 LoadedMesh load_scan_soup(const std::filesystem::path& path, TriangleSoup soup, const AnchorSet& anchors,
                           const IntakeSettings& settings) {
   if (settings.mode == IntakeMode::Strict) return load_strictly(path, std::move(soup));
-  const MeshReport report = validate_soup(soup);
+  MeshReport report = validate_soup(soup);
   // A usable file of genus > 0 goes through the intake too: its handles are cut (step 4).
-  if (report.usable && report.genus.value_or(0) == 0) return load_soup(path, std::move(soup));
+  if (report.usable && report.genus.value_or(0) == 0)
+    return load_validated_soup(path, std::move(soup), std::move(report));
   const auto file_vertices = static_cast<int>(soup.vertices.size());
   const auto file_faces = static_cast<int>(soup.triangles.size());
   PreparedScan prepared = prepare_scan(soup, landmarks_on_file(anchors, soup), settings);

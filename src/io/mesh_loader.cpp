@@ -14,7 +14,12 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const ValidationSettings
 }
 
 LoadedMesh load_soup(const std::filesystem::path& path, TriangleSoup soup, const ValidationSettings& settings) {
-  LoadedMesh loaded{path, Mesh(), validate_soup(soup, settings), {}, {}};
+  MeshReport report = validate_soup(soup, settings);
+  return load_validated_soup(path, std::move(soup), std::move(report));
+}
+
+LoadedMesh load_validated_soup(const std::filesystem::path& path, TriangleSoup soup, MeshReport report) {
+  LoadedMesh loaded{path, Mesh(), std::move(report), {}, {}};
   if (!loaded.report.usable) {
     // One line (the batch driver records it per target) with the first problems, each of
     // which names the file and the element.

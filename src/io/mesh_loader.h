@@ -44,4 +44,8 @@ LoadedMesh load_mesh(const std::filesystem::path& path, const ValidationSettings
 /// load_mesh on a soup already read from `path` (validated here): what load_mesh does after reading.
 LoadedMesh load_soup(const std::filesystem::path& path, TriangleSoup soup, const ValidationSettings& settings = {});
 
+/// load_soup with `report` = validate_soup(soup) already made by the caller (the scan intake
+/// validates a file before it decides whether to repair it).
+LoadedMesh load_validated_soup(const std::filesystem::path& path, TriangleSoup soup, MeshReport report);
+
 }  // namespace xparam
