@@ -24,7 +24,7 @@ struct FilledHole {
   std::string nearest_anchor; ///< the anchor nearest to the border ("" when none was given)
 };
 
-/// A handle (genus) of the file cut open along its shortest non-contractible cycle, both sides
+/// A handle (genus) of the file cut open along a short non-contractible cycle, both sides
 /// closed by refined, faired caps.
 struct CutHandle {
   double length = 0.0;        ///< length of the cycle cut along, mesh units

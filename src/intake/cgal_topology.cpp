@@ -9,7 +9,6 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <cmath>
-#include <limits>
 
 namespace xparam::intake {
 namespace {
@@ -18,7 +17,7 @@ using SurfaceMesh = CGAL::Surface_mesh<CGAL::Exact_predicates_inexact_constructi
 using VertexIndex = SurfaceMesh::Vertex_index;
 namespace SMT = CGAL::Surface_mesh_topology;
 
-// Rounds of the descent and base points tried per round (see shortest_non_contractible_cycle).
+// Rounds of the descent and base points tried per round (see short_non_contractible_cycle).
 constexpr int kMaxRounds = 12;
 constexpr int kBasePointsPerRound = 8;
 
@@ -54,8 +53,7 @@ double loop_length(const std::vector<Point>& points, const std::vector<int>& loo
 
 }  // namespace
 
-std::vector<int> short_non_contractible_cycle(const std::vector<Point>& points,
-                                              const std::vector<Triangle>& triangles) {
+EdgeCycle short_non_contractible_cycle(const std::vector<Point>& points, const std::vector<Triangle>& triangles) {
   SurfaceMesh mesh;
   for (const Point& p : points) mesh.add_vertex({p[0], p[1], p[2]});
   for (const Triangle& t : triangles) {
@@ -66,8 +64,8 @@ std::vector<int> short_non_contractible_cycle(const std::vector<Point>& points,
   const SMT::Curves_on_surface_topology<SurfaceMesh> topology(mesh);
   const SMT::Euclidean_length_weight_functor<SurfaceMesh> weight(mesh);
 
-  // The shortest non-contractible loop through one vertex, as vertices, spurs removed.
-  const auto loop_through = [&](int vertex) {
+  // The shortest non-contractible loop through one vertex, spurs removed.
+  const auto loop_through = [&](int vertex) -> EdgeCycle {
     const SMT::Path_on_surface<SurfaceMesh> path =
         topology.compute_shortest_non_contractible_cycle_with_base_point(mesh.halfedge(VertexIndex(vertex)), weight);
     // Each vertex of the walk is the one two consecutive edges share (the path's own halfedge
@@ -80,24 +78,23 @@ std::vector<int> short_non_contractible_cycle(const std::vector<Point>& points,
       const VertexIndex a0 = mesh.source(a), a1 = mesh.target(a);
       walk.push_back(static_cast<int>(((a1 == mesh.source(b) || a1 == mesh.target(b)) ? a1 : a0).idx()));
     }
-    return without_spurs(std::move(walk));
+    std::vector<int> loop = without_spurs(std::move(walk));
+    const double length = loop_length(points, loop);
+    return {std::move(loop), length};
   };
 
-  std::vector<int> best = loop_through(0);
-  if (best.empty()) return best;
-  double best_length = loop_length(points, best);
+  EdgeCycle best = loop_through(0);
+  if (best.vertices.empty()) return best;
   for (int round = 0; round < kMaxRounds; ++round) {
     // Base points spread evenly along the best loop so far; the first round's loop is a lasso
     // from vertex 0 whose noose, around the handle, is among them.
-    const std::vector<int> base = best;
+    const std::vector<int> base = best.vertices;
     bool improved = false;
     const std::size_t step = std::max<std::size_t>(1, base.size() / kBasePointsPerRound);
     for (std::size_t i = 0; i < base.size(); i += step) {
-      std::vector<int> loop = loop_through(base[i]);
-      const double length = loop_length(points, loop);
-      if (length < best_length * (1.0 - 1e-12)) {
+      EdgeCycle loop = loop_through(base[i]);
+      if (loop.length < best.length * (1.0 - 1e-12)) {
         best = std::move(loop);
-        best_length = length;
         improved = true;
       }
     }

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The intake's one job for CGAL's Surface_mesh_topology (GPL-3.0-or-later): the shortest
+/// The intake's one job for CGAL's Surface_mesh_topology (GPL-3.0-or-later): a short
 /// non-contractible cycle of a closed mesh. Like cgal_repair.h, plain arrays in and out; CGAL is
 /// included by cgal_topology.cpp alone, so its compile cost stays in one translation unit.
 
@@ -10,9 +10,16 @@
 
 namespace xparam::intake {
 
+/// A closed walk along a mesh's edges and its length.
+struct EdgeCycle {
+  /// Vertices in order, consecutive ones (and the last with the first) joined by an edge; no step
+  /// goes back along the edge it came, but a vertex may come twice (a figure eight).
+  std::vector<int> vertices;
+  double length = 0.0;  ///< Euclidean, mesh units
+};
+
 /// A short non-contractible cycle of a closed, oriented mesh of genus > 0 under Euclidean edge
-/// lengths: its vertices in order, consecutive ones (and the last with the first) joined by an edge,
-/// no vertex twice. Empty when every cycle is contractible (genus 0). Deterministic.
+/// lengths. Empty when every cycle is contractible (genus 0). Deterministic.
 ///
 /// CGAL's global search (compute_shortest_non_contractible_cycle) runs a shortest-path search from
 /// every vertex: quadratic, over 10 minutes on a 15k-vertex scan. This is a descent instead: the
@@ -21,7 +28,6 @@ namespace xparam::intake {
 /// (compute_shortest_non_contractible_cycle_with_base_point: one shortest-path search each). It
 /// finds a handle's short loop around it, not always the globally shortest one.
 /// \pre a valid, closed, oriented polygon mesh of one component
-std::vector<int> short_non_contractible_cycle(const std::vector<Point>& points,
-                                              const std::vector<Triangle>& triangles);
+EdgeCycle short_non_contractible_cycle(const std::vector<Point>& points, const std::vector<Triangle>& triangles);
 
 }  // namespace xparam::intake

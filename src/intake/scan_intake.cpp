@@ -138,18 +138,18 @@ int closed_genus(const std::vector<Point>& points, const std::vector<Triangle>& 
 }
 
 // Step 4: while the closed mesh has genus > 0, cut it open along a short non-contractible cycle
-// (intake::short_non_contractible_cycle) and cap both sides like holes; refuse a cycle longer than the limit. The cut's copies and
-// the caps' points are appended to `points` (their sources to `vertex_source`), the caps' faces
-// to `triangles`.
+// (intake::short_non_contractible_cycle) and cap both sides like holes; refuse a cycle longer than
+// the limit. The cut's copies and the caps' points are appended to `points` (their sources to
+// `vertex_source`), the caps' faces to `triangles`.
 void cut_handles(std::vector<Point>& points, std::vector<Triangle>& triangles, std::vector<int>& vertex_source,
                  IntakeRecord& record, const std::vector<IntakeLandmark>& landmarks, const IntakeSettings& settings,
                  const std::string& source, double diagonal, int file_vertices) {
   const double max_handle = settings.max_handle > 0.0 ? settings.max_handle : settings.max_handle_relative * diagonal;
   for (int genus = closed_genus(points, triangles); genus > 0;) {
-    const std::vector<int> cycle = intake::short_non_contractible_cycle(points, triangles);
+    const intake::EdgeCycle found = intake::short_non_contractible_cycle(points, triangles);
+    const std::vector<int>& cycle = found.vertices;
     CutHandle handle;
-    for (std::size_t i = 0; i < cycle.size(); ++i)
-      handle.length += (vec(points[cycle[i]]) - vec(points[cycle[(i + 1) % cycle.size()]])).norm();
+    handle.length = found.length;
     handle.nearest_anchor = nearest_landmark(points, cycle, landmarks);
     const std::string what = "handle (genus " + std::to_string(genus) + ") with a loop of " +
                              number(handle.length) +

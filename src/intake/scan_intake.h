@@ -4,7 +4,7 @@
 /// non-manifold bits) made into a mesh the pipeline takes, every step recorded and every
 /// prepared element traced back to the file. In order: (1) soup repair and orientation,
 /// (2) loose parts dropped, keeping the part that holds the anchors, (3) holes filled with
-/// refined, faired patches, (4) short handles cut open along their shortest loop and capped.
+/// refined, faired patches, (4) short handles cut open along a short loop around them and capped.
 /// Each step refuses, with a message naming the file and the fix, what it cannot do safely.
 /// docs/intake.md tells the whole story.
 
@@ -80,7 +80,7 @@ struct PreparedScan {
 /// \throw InputError naming soup.source, the problem, its size and the fix: a landmark on a
 ///   part that would be dropped, dropped area over max_dropped_area, a hole over max_hole, a
 ///   fill patch that intersects itself or the surface around it, faired and unfaired; a handle
-///   whose shortest loop is over max_handle, or whose caps intersect the surface.
+///   whose loop found is over max_handle, or whose caps intersect the surface.
 PreparedScan prepare_scan(const TriangleSoup& soup, const std::vector<IntakeLandmark>& landmarks,
                           const IntakeSettings& settings = {});
 

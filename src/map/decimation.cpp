@@ -7,7 +7,6 @@
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 
 #include <algorithm>
-#include <cstdint>
 #include <numeric>
 #include <random>
 #include <stdexcept>
