@@ -154,7 +154,20 @@ class Relaxation {
   // One SLIM target: the minimizer of the reweighted quadratic proxy at `uv`.
   std::vector<Eigen::Vector2d> proxy_minimizer(const std::vector<Eigen::Vector2d>& uv,
                                                const std::vector<Matrix2>& roots) {
+    // The entries come in the same order at every iteration. The first assembles them from
+    // triplets (which sum duplicates in that order); later ones add each into its slot of the same
+    // pattern in the same order, so the matrix is the same bit for bit without sorting again.
+    const bool first = slots_.empty();
     std::vector<Eigen::Triplet<double>> entries;
+    if (!first) std::fill(system_.valuePtr(), system_.valuePtr() + system_.nonZeros(), 0.0);
+    std::size_t next = 0;
+    const auto add = [&](int row, int col, double value) {
+      if (first) {
+        entries.emplace_back(row, col, value);
+      } else {
+        system_.valuePtr()[slots_[next++]] += value;
+      }
+    };
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * free_count_);
     for (size_t f = 0; f < source_.triangles.size(); ++f) {
       const FaceFrame& frame = frames_[f];
@@ -189,19 +202,23 @@ class Relaxation {
             continue;
           }
           for (int i = 0; i < 2; ++i) {
-            for (int j = 0; j < 2; ++j) entries.emplace_back(2 * row + i, 2 * col + j, block(i, j));
+            for (int j = 0; j < 2; ++j) add(2 * row + i, 2 * col + j, block(i, j));
           }
         }
       }
     }
-    Eigen::SparseMatrix<double> system(2 * free_count_, 2 * free_count_);
-    system.setFromTriplets(entries.begin(), entries.end());
-    // Every iteration assembles the same entries, so the ordering is computed once.
-    if (!pattern_analyzed_) {
-      solver_.analyzePattern(system);
-      pattern_analyzed_ = true;
+    if (first) {
+      system_.resize(2 * free_count_, 2 * free_count_);
+      system_.setFromTriplets(entries.begin(), entries.end());
+      slots_.reserve(entries.size());
+      for (const Eigen::Triplet<double>& entry : entries) {
+        const int* column = system_.innerIndexPtr() + system_.outerIndexPtr()[entry.col()];
+        const int* column_end = system_.innerIndexPtr() + system_.outerIndexPtr()[entry.col() + 1];
+        slots_.push_back(static_cast<int>(std::lower_bound(column, column_end, entry.row()) - system_.innerIndexPtr()));
+      }
+      solver_.analyzePattern(system_);  // the ordering, once
     }
-    solver_.factorize(system);
+    solver_.factorize(system_);
     std::vector<Eigen::Vector2d> result = uv;
     if (solver_.info() != Eigen::Success) return result;
     const Eigen::VectorXd solution = solver_.solve(rhs);
@@ -299,8 +316,9 @@ class Relaxation {
   std::vector<FaceFrame> frames_;
   double area_ = 0.0;
   std::vector<int> free_index_;  // #V: unknown index of a free vertex, -1 on the boundary
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;  // of the SLIM proxy
-  bool pattern_analyzed_ = false;
+  Eigen::SparseMatrix<double> system_;  // the SLIM proxy's matrix (its pattern is fixed)
+  std::vector<int> slots_;              // per assembled entry, in order: its index in system_'s values
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;  // of system_
   // Per target parameter triangle: the image triangle that held its centroid at the last
   // averaged_metrics call (-1: none yet); a cache, hence mutable.
   mutable std::vector<int> holder_;
