@@ -530,8 +530,8 @@ bool better_with_tips(const PairMapping& other, const PairMapping& current) {
 // protrusions' tips is worth a map: over 1% of the template's faces squeezed or stretched beyond
 // 3 times the map's scale. Realistic set (docs/evaluation.md): the tips' map rescues or improves
 // 13 of the 17 maps with 2.6-22% such faces (E_L2 4932 -> 1.06; 000/090 [72 scan] 1.046 ->
-// 1.025); on the 4 with 0.04-0.4%, on the 50k-vertex FAUST pair (0.07%) and on the table set's
-// FAUST pairs, it changed E_L2 by 0.0024 at most or was refused, while doubling the pair's time.
+// 1.025); on the 4 with 0.04-0.4%, and on the 50k-vertex FAUST pair (0.07%), it changed E_L2 by
+// 0.002 at most or was refused, while doubling the pair's time.
 bool squeezes_protrusions(const Mesh& source, const PairMapping& map) {
   constexpr double kDistortion = 3.0;
   constexpr double kShare = 0.01;
