@@ -3,9 +3,6 @@
 #include "core/closest_point.h"
 #include "layout/anchor_voronoi.h"
 
-#include <Eigen/LU>
-#include <Eigen/SVD>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -399,47 +396,6 @@ std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors
     on_target.tips = unmatched(on_target.tips, on_target.references);
   }
   return by_distances;
-}
-
-double distorted_face_share(const Mesh& source, const FirstMap& map, double factor) {
-  if (map.faces.empty()) return 0.0;
-  // Each triangle in a frame of its own plane: first edge along x.
-  const auto in_plane = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-    const Eigen::Vector3d x = (b - a).normalized();
-    const Eigen::Vector3d y = (b - a).cross(c - a).cross(b - a).normalized();
-    Eigen::Matrix2d edges;
-    edges << (b - a).dot(x), (c - a).dot(x), 0.0, (c - a).dot(y);
-    return edges;
-  };
-  double source_area = 0.0;
-  double image_area = 0.0;
-  std::vector<Eigen::Matrix2d> jacobians;
-  std::vector<bool> degenerate;
-  for (const std::array<int, 3>& f : map.faces) {
-    const Eigen::Vector3d p[3] = {position(source, source.vertex_handle(f[0])),
-                                  position(source, source.vertex_handle(f[1])),
-                                  position(source, source.vertex_handle(f[2]))};
-    const Eigen::Vector3d q[3] = {map.images[f[0]], map.images[f[1]], map.images[f[2]]};
-    const double twice_source = (p[1] - p[0]).cross(p[2] - p[0]).norm();
-    const double twice_image = (q[1] - q[0]).cross(q[2] - q[0]).norm();
-    source_area += 0.5 * twice_source;
-    image_area += 0.5 * twice_image;
-    const bool flat = !(twice_source > 0.0) || !(twice_image > 1e-12 * (q[1] - q[0]).squaredNorm());
-    degenerate.push_back(flat);
-    jacobians.push_back(flat ? Eigen::Matrix2d::Zero()
-                             : Eigen::Matrix2d(in_plane(q[0], q[1], q[2]) * in_plane(p[0], p[1], p[2]).inverse()));
-  }
-  const double scale = std::sqrt(image_area / source_area);
-  int distorted = 0;
-  for (std::size_t f = 0; f < jacobians.size(); ++f) {
-    if (degenerate[f]) {
-      ++distorted;
-      continue;
-    }
-    const Eigen::Vector2d sigma = Eigen::JacobiSVD<Eigen::Matrix2d>(jacobians[f]).singularValues() / scale;
-    distorted += !(sigma[0] <= factor && sigma[1] * factor >= 1.0);
-  }
-  return static_cast<double>(distorted) / static_cast<double>(jacobians.size());
 }
 
 }  // namespace xparam

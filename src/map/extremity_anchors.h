@@ -64,14 +64,6 @@ struct FirstMap {
   const std::vector<std::array<int, 3>>& faces;
 };
 
-/// The share of template faces (by count) that `map` squeezes or stretches in some direction by
-/// more than `factor` times its own scale (sqrt of the remesh's area over the template's); a face
-/// whose image is degenerate counts. A protrusion squeezed into its root shows as many such faces,
-/// the template's fingers crushed onto the target's palm or stretched over its fingers; a map that
-/// squeezes none has few (map_pair then does not map again through the tips).
-/// \pre map.images holds one position per source vertex
-double distorted_face_share(const Mesh& source, const FirstMap& map, double factor);
-
 /// Template tips and target tips (Extremities::tips) that are each other's nearest through `map`
 /// (a template tip's image to a target tip, and the target tip's nearest remesh point, taken
 /// back onto the template, to the template tip), with a mismatch below `max_mismatch`. Named

@@ -526,21 +526,6 @@ bool better_with_tips(const PairMapping& other, const PairMapping& current) {
          keeps_faces_and_area(other, current);
 }
 
-// Whether `map` may have squeezed an unanchored protrusion, so that mapping again through the
-// protrusions' tips is worth a map: over 1% of the template's faces squeezed or stretched beyond
-// 3 times the map's scale. Realistic set (docs/evaluation.md): the tips' map rescues or improves
-// 13 of the 17 maps with 2.6-22% such faces (E_L2 4932 -> 1.06; 000/090 [72 scan] 1.046 ->
-// 1.025); on the 4 with 0.04-0.4%, and on the 50k-vertex FAUST pair (0.07%), it changed E_L2 by
-// 0.002 at most or was refused, while doubling the pair's time.
-bool squeezes_protrusions(const Mesh& source, const PairMapping& map) {
-  constexpr double kDistortion = 3.0;
-  constexpr double kShare = 0.01;
-  std::vector<Eigen::Vector3d> images(map.remesh_vertices.rows());
-  for (int v = 0; v < static_cast<int>(images.size()); ++v) images[v] = map.remesh_vertices.row(v).transpose();
-  const std::vector<std::array<int, 3>> faces = triangles_of(source);
-  return distorted_face_share(source, FirstMap{images, faces}, kDistortion) > kShare;
-}
-
 // A map through `current`'s anchors plus `tips`, when it is better than `current`; nothing
 // otherwise, or when there are no tips or no map is left.
 std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, const AnchoredMap& current,
@@ -712,8 +697,8 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     }
     if (released && folds_less(released->map, so_far)) best = std::move(released);
   }
-  budget.left += kept_back;
-  if (settings.extremity_anchors && squeezes_protrusions(source, best ? best->map : plain.map)) {
+  if (settings.extremity_anchors) {
+    budget.left += kept_back;
     if (std::optional<AnchoredMap> tipped = with_extremity_anchors(in, best ? *best : plain, seconds)) {
       tipped->map.tip_anchors = (best ? best->map : plain.map).tip_anchors;
       tipped->map.released_anchors = (best ? best->map : plain.map).released_anchors;

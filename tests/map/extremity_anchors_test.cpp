@@ -1,6 +1,5 @@
 #include "map/extremity_anchors.h"
 
-#include "geodesic/test_meshes.h"
 #include "layout/anchor_voronoi.h"
 #include "layout/layout_fixtures.h"
 
@@ -9,7 +8,6 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
-#include <functional>
 #include <variant>
 
 namespace xparam {
@@ -195,39 +193,6 @@ TEST_F(HandOfTips, MirrorTipsAreLeftUnmatchedUntilALandmarkTellsThemApart) {
   EXPECT_EQ(pairs(match_extremities_by_distances({mesh, tips, off_axis, 0.1}, {target, tips, off_axis, 0.1},
                                                  {images, faces}, {thumb}, {})),
             (std::vector<std::pair<int, int>>{{a, a}, {b, b}}));
-}
-
-// Hand-computed shares on a flat 4 x 4 grid (32 faces, unit squares cut by a diagonal), a map's
-// distortion measured against its own scale.
-TEST(DistortedFaceShare, CountsFacesSqueezedOrStretchedBeyondTheMapsScale) {
-  const Mesh grid = test::flat_grid(4, 4);
-  const std::vector<std::array<int, 3>> faces = triangles_of(grid);
-  const auto share = [&](const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& map, double factor) {
-    std::vector<Eigen::Vector3d> images;
-    for (VertexHandle v : grid.vertices()) images.push_back(map(position(grid, v)));
-    return distorted_face_share(grid, {images, faces}, factor);
-  };
-  const auto identity = [](const Eigen::Vector3d& p) { return p; };
-  EXPECT_EQ(share(identity, 1.01), 0.0);
-  EXPECT_EQ(share([](const Eigen::Vector3d& p) { return Eigen::Vector3d(5.0 * p); }, 1.01), 0.0);
-  // x stretched 4 times: the map's scale is 2, so every face is stretched 2 times and squeezed
-  // to 1/2 against it.
-  const auto stretch_x = [](const Eigen::Vector3d& p) { return Eigen::Vector3d(4.0 * p.x(), p.y(), 0.0); };
-  EXPECT_EQ(share(stretch_x, 2.1), 0.0);
-  EXPECT_EQ(share(stretch_x, 1.9), 1.0);
-  // The right half squeezed to a quarter of its width: scale sqrt(10 / 16) = 0.79, the left
-  // half 1.26 times its scale both ways, the right half 0.316 across: squeezed beyond a factor 3,
-  // not beyond 3.5.
-  const auto squeeze_right = [](const Eigen::Vector3d& p) {
-    return Eigen::Vector3d(p.x() <= 2.0 ? p.x() : 2.0 + 0.25 * (p.x() - 2.0), p.y(), 0.0);
-  };
-  EXPECT_EQ(share(squeeze_right, 3.0), 0.5);
-  EXPECT_EQ(share(squeeze_right, 3.5), 0.0);
-  // Corner (0, 0) drawn onto (1, 1): its two faces collapse to segments and count.
-  const auto collapse_corner = [](const Eigen::Vector3d& p) {
-    return p.norm() == 0.0 ? Eigen::Vector3d(1.0, 1.0, 0.0) : p;
-  };
-  EXPECT_EQ(share(collapse_corner, 3.0), 2.0 / 32.0);
 }
 
 }  // namespace
