@@ -53,7 +53,8 @@ double loop_length(const std::vector<Point>& points, const std::vector<int>& loo
 
 }  // namespace
 
-EdgeCycle short_non_contractible_cycle(const std::vector<Point>& points, const std::vector<Triangle>& triangles) {
+EdgeCycle short_non_contractible_cycle(const std::vector<Point>& points,
+                                      const std::vector<Triangle>& triangles) {
   SurfaceMesh mesh;
   for (const Point& p : points) mesh.add_vertex({p[0], p[1], p[2]});
   for (const Triangle& t : triangles) {

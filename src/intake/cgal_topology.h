@@ -28,6 +28,7 @@ struct EdgeCycle {
 /// (compute_shortest_non_contractible_cycle_with_base_point: one shortest-path search each). It
 /// finds a handle's short loop around it, not always the globally shortest one.
 /// \pre a valid, closed, oriented polygon mesh of one component
-EdgeCycle short_non_contractible_cycle(const std::vector<Point>& points, const std::vector<Triangle>& triangles);
+EdgeCycle short_non_contractible_cycle(const std::vector<Point>& points,
+                                      const std::vector<Triangle>& triangles);
 
 }  // namespace xparam::intake

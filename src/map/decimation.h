@@ -35,9 +35,9 @@ struct DecimationSettings {
 
 /// `mesh` (only its points and faces are read) decimated by quadric-error edge collapses (the
 /// cheapest first, or the cheapest of a few: DecimationSettings::choices; within `settings`) down
-/// to `vertices` vertices, or as far as legal collapses go (check mesh.n_vertices()). No vertex of `locked` is removed, and a face whose three corners
-/// are locked is kept as it is. Deterministic: the same input always gives the same mesh, in the
-/// same order.
+/// to `vertices` vertices, or as far as legal collapses go (check mesh.n_vertices()). No vertex of
+/// `locked` is removed, and a face whose three corners are locked is kept as it is. Deterministic:
+/// the same input always gives the same mesh, in the same order.
 DecimatedMesh decimate(const Mesh& mesh, int vertices, const std::vector<VertexHandle>& locked = {},
                        const DecimationSettings& settings = {});
 

@@ -212,9 +212,10 @@ class Relaxation {
       system_.setFromTriplets(entries.begin(), entries.end());
       slots_.reserve(entries.size());
       for (const Eigen::Triplet<double>& entry : entries) {
-        const int* column = system_.innerIndexPtr() + system_.outerIndexPtr()[entry.col()];
-        const int* column_end = system_.innerIndexPtr() + system_.outerIndexPtr()[entry.col() + 1];
-        slots_.push_back(static_cast<int>(std::lower_bound(column, column_end, entry.row()) - system_.innerIndexPtr()));
+        const int* rows = system_.innerIndexPtr();
+        const int* column = rows + system_.outerIndexPtr()[entry.col()];
+        const int* column_end = rows + system_.outerIndexPtr()[entry.col() + 1];
+        slots_.push_back(static_cast<int>(std::lower_bound(column, column_end, entry.row()) - rows));
       }
       solver_.analyzePattern(system_);  // the ordering, once
     }
