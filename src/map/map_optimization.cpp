@@ -15,14 +15,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <string>
 
 namespace xparam {
 namespace {
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // An orthonormal frame of the plane normal to `normal`, right-handed with it.
 struct PlaneFrame {
@@ -90,17 +87,12 @@ struct CoveragePull {
   double weight = 0.0;                              // coverage_weight times its share of the target's area
 };
 
-// A folded face's energy while the barrier holds (per unit weight): finite, so a folded face
+// A folded face's energy (per unit weight): finite, so a folded face
 // neither freezes its vertices nor hides the rest of its ring's energy, and far above any
 // unfolded face's, so opening it pays and folding one never does.
 constexpr double kFoldedFaceEnergy = 1e6;
 
-// Sweeps the untangling phase may take, and after how many it gives up when the folds have
-// not become fewer.
-constexpr int kUntangleSweeps = 60;
-constexpr int kUntanglePatience = 15;
-
-// The barrier phase goes on while a sweep lowers the coverage energy by this fraction of it.
+// The sweeps go on while a sweep lowers the coverage energy by this fraction of it.
 constexpr double kCoverageTolerance = 0.01;
 
 // Passes of open_remaining_folds, at most.
@@ -138,22 +130,16 @@ class MapOptimizer {
     const std::vector<SurfacePoint> start = locations_;
     result.flipped_before = count_folded();
     result.distortion_before = mean_unfolded_energy();
-    int sweeps_left = settings_.max_sweeps;
-    if (result.flipped_before > 0) {
-      const int used = untangle(std::min(sweeps_left, kUntangleSweeps));
-      sweeps_left -= used;
-      result.sweeps += used;
-    }
-    // Lowering the energy, the barrier keeping every unfolded face unfolded. The energy is
+    // Lowering the energy, the barrier keeping every unfolded face unfolded and a folded face
+    // changing only by opening. The energy is
     // measured again after each refresh of the coverage pulls: the recorded energy never rises
     // between refreshes.
-    eps_ = 0.0;
     refresh_coverage();
     double energy = total_energy();
     result.energy.push_back(energy);
     std::fill(moved_.begin(), moved_.end(), 1);
     double coverage = total_coverage_energy();
-    for (int since_refresh = 0; sweeps_left > 0; --sweeps_left) {
+    for (int since_refresh = 0, sweeps_left = settings_.max_sweeps; sweeps_left > 0; --sweeps_left) {
       const bool any_moved = sweep();
       ++result.sweeps;
       const double was = energy;
@@ -194,47 +180,7 @@ class MapOptimizer {
   }
 
  private:
-  // Untangling (Garanzha et al.'s eps schedule): eps shrinks as the energy stops falling and the
-  // most folded face opens. Ends at the first sweep that leaves no fold, after `max_sweeps`, or
-  // when `kUntanglePatience` sweeps have not made the folds fewer; leaves the map with the fewest
-  // folds seen that has no more folds than the start against either reference (the start when
-  // none: a fold the anchors force is left to the barrier phase, which keeps it). Returns the
-  // sweeps run.
-  int untangle(int max_sweeps) {
-    std::vector<SurfacePoint> best = locations_;
-    const std::array<int, 2> at_start = count_folds_by_reference();
-    int best_folds = at_start[0] + at_start[1];
-    int best_sweep = 0;
-    eps_ = initial_eps(smallest_determinant());
-    double energy = total_energy();
-    int sweeps = 0;
-    while (sweeps < max_sweeps && sweeps - best_sweep < kUntanglePatience) {
-      sweep();
-      ++sweeps;
-      const std::array<int, 2> folds = count_folds_by_reference();
-      if (folds[0] <= at_start[0] && folds[1] <= at_start[1] && folds[0] + folds[1] < best_folds) {
-        best = locations_;
-        best_folds = folds[0] + folds[1];
-        best_sweep = sweeps;
-      }
-      const double min_det = smallest_determinant();
-      if (min_det > 0.0) break;  // no face folds by either reference
-      const double was = energy;
-      energy = total_energy();
-      const double sigma = std::max(1.0 - energy / was, 0.1);
-      const double mu = (1.0 - sigma) * foldover_chi(min_det, eps_);
-      if (min_det < mu) eps_ = 2.0 * std::sqrt(mu * (mu - min_det));
-      energy = total_energy();
-    }
-    locations_ = std::move(best);
-    for (std::size_t v = 0; v < locations_.size(); ++v) {
-      positions_[v] = position(target_, locations_[v]);
-      normals_[v] = reference_.interpolated_normal(locations_[v]);
-    }
-    return sweeps;
-  }
-
-  // Folds the barrier phase leaves where no descent step of one vertex opens them (a tiny face
+  // Folds the sweeps leave where no descent step of one vertex opens them (a tiny face
   // across a sharp crease of the target, an ear's rim): each free corner of a face folded by the
   // remesh's own count or the strict one, in vertex order, tries the target point nearest to the
   // centroid of its neighbours' images, then the points halfway and a quarter of the way there.
@@ -431,11 +377,8 @@ class MapOptimizer {
     value.folded = !frame.valid || !(j.determinant() > 0.0);
     value.against_own = frame.against_own || !frame.valid;
     value.against_corners = frame.against_corners || !frame.valid;
-    if (eps_ > 0.0) {
-      value.energy = weight_[f] * foldover_free_energy(j, settings_.area_weight, eps_);
-    } else {
-      value.energy = weight_[f] * (value.folded ? kFoldedFaceEnergy : foldover_free_energy(j, settings_.area_weight, 0.0));
-    }
+    value.energy =
+        weight_[f] * (value.folded ? kFoldedFaceEnergy : foldover_free_energy(j, settings_.area_weight));
     value.energy += coverage_energy(f, moved, at);
     return value;
   }
@@ -513,7 +456,7 @@ class MapOptimizer {
     return sum;
   }
 
-  // The energy (eps = 0) per template area over the faces that do not fold.
+  // The energy per template area over the faces that do not fold.
   double mean_unfolded_energy() const {
     double energy = 0.0;
     double weight = 0.0;
@@ -521,22 +464,11 @@ class MapOptimizer {
       PlaneFrame frame;
       const FaceReferences reference = reference_normal(f);
       if (face_value(f, reference, -1, {}).folded) continue;
-      energy += weight_[f] * foldover_free_energy(jacobian(f, reference, -1, {}, frame), settings_.area_weight, 0.0);
+      const Eigen::Matrix2d j = jacobian(f, reference, -1, {}, frame);
+      energy += weight_[f] * foldover_free_energy(j, settings_.area_weight);
       weight += weight_[f];
     }
     return weight > 0.0 ? energy / weight : 0.0;
-  }
-
-  double determinant(int f) const {
-    PlaneFrame frame;
-    const Eigen::Matrix2d j = jacobian(f, reference_normal(f), -1, {}, frame);
-    return frame.valid ? j.determinant() : 0.0;
-  }
-
-  double smallest_determinant() const {
-    double smallest = kInfinity;
-    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) smallest = std::min(smallest, determinant(f));
-    return smallest;
   }
 
   int count_folded() const {
@@ -544,24 +476,6 @@ class MapOptimizer {
     for (int f = 0; f < static_cast<int>(faces_.size()); ++f)
       folded += face_value(f, reference_normal(f), -1, {}).folded;
     return folded;
-  }
-
-  // Faces folded against each reference: what untangling lowers.
-  std::array<int, 2> count_folds_by_reference() const {
-    std::array<int, 2> folds{};
-    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
-      const FaceValue value = face_value(f, reference_normal(f), -1, {});
-      folds[0] += value.against_own;
-      folds[1] += value.against_corners;
-    }
-    return folds;
-  }
-
-  // The first eps of the schedule: the most folded face's chi is a tenth of its |det|.
-  static double initial_eps(double min_det) {
-    const double depth = std::max(-min_det, 1e-3);
-    const double mu = 0.1 * depth;
-    return 2.0 * std::sqrt(mu * (mu + depth));
   }
 
   // Energy of v's faces with v's image at `at` (`references` the faces' references there), and
@@ -578,7 +492,7 @@ class MapOptimizer {
   }
 
   // d(ring energy)/d(v's image) in 3-D, the reference normals held; folded faces contribute
-  // nothing while the barrier holds (their energy is constant).
+  // nothing (their energy is constant).
   Eigen::Vector3d ring_gradient(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at) const {
     Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
     for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
@@ -586,10 +500,10 @@ class MapOptimizer {
       gradient += coverage_gradient(in.face, in.corner, v, at);
       PlaneFrame frame;
       const Eigen::Matrix2d j = jacobian(in.face, references[k], v, at, frame);
-      if (!frame.valid || (eps_ == 0.0 && !(j.determinant() > 0.0))) continue;
+      if (!frame.valid || !(j.determinant() > 0.0)) continue;
       // J = [x1 - x0, x2 - x0] R: dE/d(edge matrix) = dE/dJ R^T.
       const Eigen::Matrix2d by_edges = weight_[in.face] *
-                                       foldover_free_energy_gradient(j, settings_.area_weight, eps_) *
+                                       foldover_free_energy_gradient(j, settings_.area_weight) *
                                        rest_inverse_[in.face].transpose();
       const Eigen::Vector2d by_point =
           in.corner == 0 ? Eigen::Vector2d(-by_edges.col(0) - by_edges.col(1)) : Eigen::Vector2d(by_edges.col(in.corner - 1));
@@ -604,8 +518,8 @@ class MapOptimizer {
   }
 
   // One Newton step of v's image in the plane of its target face, walked on the surface, with
-  // backtracking until its faces' energy falls (and, while the barrier holds, no more of them
-  // fold). Returns whether the image moved.
+  // backtracking until its faces' energy falls and no more of them fold. Returns whether the
+  // image moved.
   bool move_vertex(int v) {
     const std::vector<Incidence>& ring = incidences_[v];
     if (ring.empty()) return false;
@@ -672,9 +586,9 @@ class MapOptimizer {
         moved_references[k] = reference_normal(ring[k].face, v, *there, there_normal);
       const FaceValue ring_after = ring_value(v, moved_references, y);
       const double after = ring_after.energy;
-      // While the barrier holds, a folded face may change only by opening.
-      if (eps_ == 0.0 && (ring_after.against_own > ring_before.against_own ||
-                          ring_after.against_corners > ring_before.against_corners))
+      // A folded face may change only by opening.
+      if (ring_after.against_own > ring_before.against_own ||
+          ring_after.against_corners > ring_before.against_corners)
         continue;
       if (after < before + 1e-4 * fraction * slope) {
         locations_[v] = *there;
@@ -700,7 +614,6 @@ class MapOptimizer {
   std::vector<PinnedVertex> pinned_;
   std::vector<std::vector<int>> colours_;
   std::vector<char> moved_;  // per vertex: whether it moved in the last sweep
-  double eps_ = 0.0;
   std::vector<double> target_vertex_share_;        // per target vertex: its share of the target's area
   double coverage_margin_ = 0.0;                   // gap (target units) a target vertex may have for free
   std::vector<std::vector<CoveragePull>> pulls_;   // per template face; empty when coverage is off

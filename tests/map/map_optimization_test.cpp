@@ -18,35 +18,32 @@
 namespace xparam {
 namespace {
 
-TEST(FoldoverFreeEnergy, RotationsAreItsMinimumAndFoldsAreInfiniteWithoutEps) {
+TEST(FoldoverFreeEnergy, RotationsAreItsMinimumAndFoldsAreInfinite) {
   const double lambda = 1.0;
   const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(0.7).toRotationMatrix();
-  EXPECT_NEAR(foldover_free_energy(rotation, lambda, 0.0), 4.0, 1e-14);
+  EXPECT_NEAR(foldover_free_energy(rotation, lambda), 4.0, 1e-14);
   // A similarity costs area, a shear angles: both above 4 (hand-computed values).
-  EXPECT_NEAR(foldover_free_energy(2.0 * rotation, lambda, 0.0), 8.0 / 4.0 + 4.0 + 0.25, 1e-12);
+  EXPECT_NEAR(foldover_free_energy(2.0 * rotation, lambda), 8.0 / 4.0 + 4.0 + 0.25, 1e-12);
   Eigen::Matrix2d shear;
   shear << 1.0, 0.5, 0.0, 1.0;
-  EXPECT_NEAR(foldover_free_energy(shear, lambda, 0.0), 2.25 + 2.0, 1e-12);
+  EXPECT_NEAR(foldover_free_energy(shear, lambda), 2.25 + 2.0, 1e-12);
   Eigen::Matrix2d mirror = Eigen::Matrix2d::Identity();
   mirror(0, 0) = -1.0;
-  EXPECT_TRUE(std::isinf(foldover_free_energy(mirror, lambda, 0.0)));
-  EXPECT_TRUE(std::isfinite(foldover_free_energy(mirror, lambda, 0.1)));
+  EXPECT_TRUE(std::isinf(foldover_free_energy(mirror, lambda)));
+  EXPECT_TRUE(std::isinf(foldover_free_energy(Eigen::Matrix2d::Zero(), lambda)));
 }
 
 TEST(FoldoverFreeEnergy, GradientMatchesCentralDifferences) {
   Eigen::Matrix2d j;
   j << 1.3, -0.4, 0.2, 0.7;
-  for (const double eps : {0.0, 0.05}) {
-    for (const Eigen::Matrix2d& at : {Eigen::Matrix2d(j), Eigen::Matrix2d(-j)}) {
-      if (eps == 0.0 && at.determinant() <= 0.0) continue;
-      const Eigen::Matrix2d gradient = foldover_free_energy_gradient(at, 1.0, eps);
-      for (int k = 0; k < 4; ++k) {
-        Eigen::Matrix2d step = Eigen::Matrix2d::Zero();
-        step(k / 2, k % 2) = 1e-6;
-        const double difference =
-            (foldover_free_energy(at + step, 1.0, eps) - foldover_free_energy(at - step, 1.0, eps)) / 2e-6;
-        EXPECT_NEAR(gradient(k / 2, k % 2), difference, 1e-5 * std::max(1.0, std::abs(difference)));
-      }
+  for (const double lambda : {0.0, 1.0, 3.0}) {
+    const Eigen::Matrix2d gradient = foldover_free_energy_gradient(j, lambda);
+    for (int k = 0; k < 4; ++k) {
+      Eigen::Matrix2d step = Eigen::Matrix2d::Zero();
+      step(k / 2, k % 2) = 1e-6;
+      const double difference =
+          (foldover_free_energy(j + step, lambda) - foldover_free_energy(j - step, lambda)) / 2e-6;
+      EXPECT_NEAR(gradient(k / 2, k % 2), difference, 1e-5 * std::max(1.0, std::abs(difference)));
     }
   }
 }
