@@ -111,10 +111,44 @@ double first_collapse(const Matrix2& edges, const Matrix2& step) {
   return best;
 }
 
+// Per triangle, per side k (the side opposite corner k): the triangle across it, -1 on the
+// boundary.
+std::vector<std::array<int, 3>> triangle_neighbours(const std::vector<std::array<int, 3>>& triangles) {
+  struct Side {
+    std::array<int, 2> ends;  // ascending vertex ids
+    int triangle = 0;
+    int k = 0;
+  };
+  std::vector<Side> sides;
+  sides.reserve(3 * triangles.size());
+  for (int f = 0; f < static_cast<int>(triangles.size()); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles[f][(k + 1) % 3];
+      const int b = triangles[f][(k + 2) % 3];
+      sides.push_back({{std::min(a, b), std::max(a, b)}, f, k});
+    }
+  }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) { return x.ends < y.ends; });
+  std::vector<std::array<int, 3>> neighbours(triangles.size(), {-1, -1, -1});
+  for (std::size_t i = 0; i + 1 < sides.size(); ++i) {
+    if (sides[i].ends != sides[i + 1].ends) continue;
+    neighbours[sides[i].triangle][sides[i].k] = sides[i + 1].triangle;
+    neighbours[sides[i + 1].triangle][sides[i + 1].k] = sides[i].triangle;
+  }
+  return neighbours;
+}
+
+// Steps a walk between neighbouring image triangles may take before the point locator is asked.
+constexpr int kMaxWalkSteps = 16;
+
 class Relaxation {
  public:
   Relaxation(const DiskPatch& source, const TargetPatchView& target, double scale)
-      : source_(source), target_(target), scale_(scale), metrics_(target_metrics(target)) {
+      : source_(source),
+        target_(target),
+        scale_(scale),
+        metrics_(target_metrics(target)),
+        neighbours_(triangle_neighbours(source.triangles)) {
     const size_t n_faces = source.triangles.size();
     frames_.reserve(n_faces);
     for (const std::array<int, 3>& t : source.triangles) {
@@ -264,8 +298,13 @@ class Relaxation {
       if (metrics_.uv_area[t] <= 0.0) continue;
       int& f = holder_[t];
       if (f < 0 || !strictly_inside(metrics_.centroid[t], uv, source_.triangles[f])) {
-        if (!images) images.emplace(uv, source_.triangles);
-        f = images->locate(metrics_.centroid[t]).triangle;
+        const int walked = f < 0 ? -1 : walk_to(metrics_.centroid[t], uv, f);
+        if (walked >= 0) {
+          f = walked;
+        } else {
+          if (!images) images.emplace(uv, source_.triangles);
+          f = images->locate(metrics_.centroid[t]).triangle;
+        }
       }
       sum[f] += metrics_.uv_area[t] * metrics_.metric[t];
       covered[f] += metrics_.uv_area[t];
@@ -287,6 +326,25 @@ class Relaxation {
       averaged[f] = sum[f] / covered[f];
     }
     return averaged;
+  }
+
+  // The image triangle that holds p strictly inside, walked to from image triangle `start`
+  // across the side p lies farthest beyond: then, the images being an embedding, the one the
+  // point locator would find. -1 when the walk meets the boundary, a side p lies on, or takes
+  // more than kMaxWalkSteps. \pre every image triangle counter-clockwise (energy checks it)
+  int walk_to(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& uv, int start) const {
+    int f = start;
+    for (int step = 0; step < kMaxWalkSteps && f >= 0; ++step) {
+      const std::array<int, 3>& t = source_.triangles[f];
+      const std::array<double, 3> beyond = {signed_area2(p, uv[t[1]], uv[t[2]]),
+                                            signed_area2(uv[t[0]], p, uv[t[2]]),
+                                            signed_area2(uv[t[0]], uv[t[1]], p)};
+      const int k = static_cast<int>(std::min_element(beyond.begin(), beyond.end()) - beyond.begin());
+      if (beyond[k] > 0.0) return f;
+      if (beyond[k] == 0.0) return -1;
+      f = neighbours_[f][k];
+    }
+    return -1;
   }
 
   // Whether p lies inside the image of `triangle` and on none of its sides: then, the images being
@@ -315,6 +373,7 @@ class Relaxation {
   double scale_ = 1.0;
   TargetMetrics metrics_;
   std::vector<FaceFrame> frames_;
+  std::vector<std::array<int, 3>> neighbours_;  // of the image triangles (triangle_neighbours)
   double area_ = 0.0;
   std::vector<int> free_index_;  // #V: unknown index of a free vertex, -1 on the boundary
   Eigen::SparseMatrix<double> system_;  // the SLIM proxy's matrix (its pattern is fixed)
