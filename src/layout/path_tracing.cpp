@@ -70,15 +70,19 @@ TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle
   std::sort(end_vertices.begin(), end_vertices.end());
   const auto is_end = [&](int v) { return std::binary_search(end_vertices.begin(), end_vertices.end(), v); };
 
+  // Goal-directed (A*): a vertex is queued by its distance plus its straight-line distance to
+  // the target anchor, which no path can beat (edge lengths are straight-line too), so a vertex
+  // leaves the queue at its shortest distance, as in Dijkstra's order, and the search settles the
+  // target anchor after far fewer vertices than a disk of the path's length.
   const Eigen::Vector3d target = position(mesh, to);
-  using Entry = std::pair<double, int>;  // (distance, vertex); vertex -1 is the target anchor
+  using Entry = std::pair<double, int>;  // (distance + remaining straight line, vertex); -1: target anchor
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
   const auto reach = [&](int v, double d, int parent) {
     if (scratch.stamp[v] == visit && scratch.distance[v] <= d) return;
     scratch.stamp[v] = visit;
     scratch.distance[v] = d;
     scratch.parent[v] = parent;
-    queue.emplace(d, v);
+    queue.emplace(d + (target - position(mesh, VertexHandle(v))).norm(), v);
   };
   const Eigen::Vector3d source = position(mesh, from);
   const auto may_pass = [&](VertexHandle v) { return !labels.blocked(v) && (!passable || passable(v.idx())); };
@@ -88,12 +92,13 @@ TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle
   double best = std::numeric_limits<double>::infinity();
   int best_last = -1;
   while (!queue.empty()) {
-    const auto [d, v] = queue.top();
+    const auto [key, v] = queue.top();
     queue.pop();
     if (v == -1) break;  // the target anchor is settled
-    if (d > scratch.distance[v]) continue;
     const VertexHandle vh(v);
     const Eigen::Vector3d p = position(mesh, vh);
+    const double d = scratch.distance[v];
+    if (key > d + (target - p).norm()) continue;  // a stale entry: v was reached shorter since
     if (is_end(v)) {
       const double total = d + (target - p).norm();
       if (total < best || (total == best && v < best_last)) {

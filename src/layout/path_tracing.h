@@ -41,7 +41,7 @@ struct TracedPath {
   bool found() const { return !vertices.empty(); }
 };
 
-/// Reusable Dijkstra buffers for one mesh (grown on demand); reuse pays when tracing many paths.
+/// Reusable shortest-path buffers for one mesh (grown on demand); reuse pays when tracing many paths.
 struct TraceScratch {
   std::vector<double> distance;
   std::vector<int> parent;
@@ -52,10 +52,10 @@ struct TraceScratch {
 /// Which vertices (by id) a path may pass through besides being free; empty: every free vertex.
 using PassableVertex = std::function<bool(int)>;
 
-/// Shortest path (Euclidean edge lengths, Dijkstra) from anchor vertex `from` to anchor vertex
-/// `to` whose second vertex is one of `first` and whose second-to-last is one of `last`, through
-/// free vertices only (and only `passable` ones, when given). Deterministic: ties go to the
-/// smaller vertex id.
+/// Shortest path (Euclidean edge lengths; A*, goal-directed by the straight line to `to`) from
+/// anchor vertex `from` to anchor vertex `to` whose second vertex is one of `first` and whose
+/// second-to-last is one of `last`, through free vertices only (and only `passable` ones, when
+/// given). Deterministic: ties in the queue go to the smaller vertex id.
 TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle from,
                       const std::vector<VertexHandle>& first, VertexHandle to,
                       const std::vector<VertexHandle>& last, TraceScratch& scratch,
