@@ -65,7 +65,7 @@ void stretch_side(Layout& layout, int side, int e, const std::array<int, 2>& pat
   };
 
   RegionMasks masks;
-  masks.region = patch_mask(mesh, patches);
+  masks.region = patch_mask(mesh, patches, chain);
   masks.free = masks.region;
   StraightenedCurve curve;
   try {

@@ -101,7 +101,7 @@ SwapTrial perform_swap(Layout& layout, const SwapQuad& quad, const SwapQuad& nam
   std::array<std::vector<VertexHandle>, 2> paths;
   for (int side = 0; side < 2; ++side) {
     LayoutSide& s = layout.sides[side];
-    regions[side] = patch_mask(s.mesh, patches);
+    regions[side] = patch_mask(s.mesh, patches, s.chains[e]);
     // Without chain e the quad is one region; its old interior vertices are free.
     s.chains[e].clear();
     VertexLabels labels = label_vertices(layout, side);

@@ -3,6 +3,7 @@
 #include "core/errors.h"
 
 #include <cstddef>
+#include <vector>
 #include <string>
 
 namespace xparam {
@@ -28,16 +29,31 @@ std::array<int, 2> patches_of_edge(const Layout& layout, int e) {
   return patches;
 }
 
-// patch_mask and relabel_region run once per stretched or swapped curve, over every face of a
-// mesh of up to a few hundred thousand faces (a refined target): they read and write the patch
-// property's array by index, which costs a few times less than the face range's per-face checks.
-// The layout's meshes delete nothing, so every index is a face.
+// patch_mask and relabel_region run once per stretched or swapped curve on meshes of up to a few
+// hundred thousand faces (a refined target): both visit the region's faces only, from the faces
+// beside the chain, so a curve costs what its two patches hold.
 
-std::vector<bool> patch_mask(const Mesh& mesh, const std::array<int, 2>& patches) {
+std::vector<bool> patch_mask(const Mesh& mesh, const std::array<int, 2>& patches,
+                             const std::vector<VertexHandle>& chain) {
+  XP_ASSERT(chain.size() >= 2);
   const std::vector<int>& labels = mesh.property(patch_property(mesh)).data_vector();
-  std::vector<bool> mask(labels.size(), false);
-  for (std::size_t f = 0; f < labels.size(); ++f) {
-    mask[f] = labels[f] == patches[0] || labels[f] == patches[1];
+  std::vector<bool> mask(mesh.n_faces(), false);
+  std::vector<FaceHandle> stack;
+  const auto reach = [&](FaceHandle f) {
+    if (!f.is_valid() || mask[f.idx()]) return;
+    const int p = labels[f.idx()];
+    if (p != patches[0] && p != patches[1]) return;
+    mask[f.idx()] = true;
+    stack.push_back(f);
+  };
+  const HalfedgeHandle first = mesh.find_halfedge(chain[0], chain[1]);
+  XP_ASSERT_MSG(first.is_valid(), "the chain's first two vertices share no edge");
+  reach(mesh.face_handle(first));
+  reach(mesh.opposite_face_handle(first));
+  while (!stack.empty()) {
+    const FaceHandle f = stack.back();
+    stack.pop_back();
+    for (const HalfedgeHandle h : mesh.fh_range(f)) reach(mesh.opposite_face_handle(h));
   }
   return mask;
 }
@@ -46,7 +62,6 @@ int relabel_region(Mesh& mesh, const std::vector<bool>& region, const std::vecto
                    const std::array<int, 2>& patches) {
   XP_ASSERT_EQ(region.size(), mesh.n_faces());
   XP_ASSERT(chain.size() >= 2);
-  const auto handle = patch_property(mesh);
   // Position of each chain vertex, so "is this mesh edge a chain edge" is O(1).
   std::vector<int> at(mesh.n_vertices(), -1);
   for (int k = 0; k < static_cast<int>(chain.size()); ++k) at[chain[k].idx()] = k;
@@ -55,32 +70,36 @@ int relabel_region(Mesh& mesh, const std::vector<bool>& region, const std::vecto
     const int j = at[mesh.to_vertex_handle(h).idx()];
     return i >= 0 && j >= 0 && (i - j == 1 || j - i == 1);
   };
-  std::vector<char> left(mesh.n_faces(), 0);
-  const FaceHandle seed = mesh.face_handle(mesh.find_halfedge(chain[0], chain[1]));
+  // Each part of the region, flooded from its face beside the chain's first edge: the left part
+  // without crossing the chain, then the right part through every face the left one left.
+  std::vector<char> part(mesh.n_faces(), 0);  // 0: not reached, 1: left, 2: right
+  const auto flood = [&](FaceHandle seed, char label, bool stop_at_chain) {
+    std::vector<FaceHandle> faces{seed};
+    part[seed.idx()] = label;
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      for (const HalfedgeHandle h : mesh.fh_range(faces[k])) {
+        if (stop_at_chain && on_chain(h)) continue;
+        const FaceHandle g = mesh.opposite_face_handle(h);
+        if (!g.is_valid() || !region[g.idx()] || part[g.idx()] != 0) continue;
+        part[g.idx()] = label;
+        faces.push_back(g);
+      }
+    }
+    return faces;
+  };
+  const HalfedgeHandle first = mesh.find_halfedge(chain[0], chain[1]);
+  const FaceHandle seed = mesh.face_handle(first);
   XP_ASSERT_MSG(seed.is_valid() && region[seed.idx()],
                 "the face left of the chain's first edge is outside the region");
-  left[seed.idx()] = 1;
-  std::vector<FaceHandle> stack{seed};
-  int count = 1;
-  while (!stack.empty()) {
-    const FaceHandle f = stack.back();
-    stack.pop_back();
-    for (const HalfedgeHandle h : mesh.fh_range(f)) {
-      if (on_chain(h)) continue;
-      const FaceHandle g = mesh.opposite_face_handle(h);
-      if (!g.is_valid() || !region[g.idx()] || left[g.idx()]) continue;
-      left[g.idx()] = 1;
-      ++count;
-      stack.push_back(g);
-    }
-  }
-  const FaceHandle right = mesh.opposite_face_handle(mesh.find_halfedge(chain[0], chain[1]));
-  XP_ASSERT_MSG(right.is_valid() && !left[right.idx()], "the chain does not cut its region in two");
-  std::vector<int>& labels = mesh.property(handle).data_vector();
-  for (std::size_t f = 0; f < labels.size(); ++f) {
-    if (region[f]) labels[f] = left[f] ? patches[0] : patches[1];
-  }
-  return count;
+  const std::vector<FaceHandle> left = flood(seed, 1, true);
+  const FaceHandle right = mesh.opposite_face_handle(first);
+  XP_ASSERT_MSG(right.is_valid() && region[right.idx()] && part[right.idx()] == 0,
+                "the chain does not cut its region in two");
+  const std::vector<FaceHandle> rest = flood(right, 2, false);
+  const auto handle = patch_property(mesh);
+  for (const FaceHandle f : left) mesh.property(handle, f) = patches[0];
+  for (const FaceHandle f : rest) mesh.property(handle, f) = patches[1];
+  return static_cast<int>(left.size());
 }
 
 }  // namespace xparam

@@ -20,15 +20,21 @@ OpenMesh::FPropHandleT<int> patch_property(const Mesh& mesh);
 /// \throw LayoutError when a halfedge of e lies in no patch
 std::array<int, 2> patches_of_edge(const Layout& layout, int e);
 
-/// Per face of `mesh`: true when its patch id is one of `patches`.
-std::vector<bool> patch_mask(const Mesh& mesh, const std::array<int, 2>& patches);
+/// Per face of `mesh`: true when its patch id is one of `patches`, found from the faces on
+/// either side of `chain`'s first edge (the chain between the two patches), so only the two
+/// patches' faces are visited.
+/// \pre each patch's faces are connected across edges (assign_patches and relabel_region make
+///      them so)
+std::vector<bool> patch_mask(const Mesh& mesh, const std::array<int, 2>& patches,
+                             const std::vector<VertexHandle>& chain);
 
 /// Re-label the faces of `region` (a mask over the faces of `mesh`, the union of two patches)
 /// after `chain` was inserted through it: the faces reached from the face on the left of the
-/// chain's first edge without crossing a chain edge get patches[0], all other region faces
-/// patches[1]. Returns the number of faces labelled patches[0].
-/// \pre `chain` runs inside `region` from one boundary anchor to another and cuts it in two;
-///      region.size() == mesh.n_faces()
+/// chain's first edge without crossing a chain edge get patches[0], the faces reached from the
+/// face on its right patches[1]; only the region's faces are visited. Returns the number of faces
+/// labelled patches[0].
+/// \pre `chain` runs inside `region` from one boundary anchor to another and cuts it in two
+///      parts connected across edges; region.size() == mesh.n_faces()
 int relabel_region(Mesh& mesh, const std::vector<bool>& region, const std::vector<VertexHandle>& chain,
                    const std::array<int, 2>& patches);
 

@@ -52,7 +52,7 @@ constexpr double kTolerance = 2.5 * StraightenSettings{}.snap_tolerance;
 std::vector<bool> region_of(const Layout& layout, int side, int e,
                             const std::vector<VertexHandle>& avoided = {}) {
   const Mesh& mesh = layout.sides[side].mesh;
-  std::vector<bool> mask = patch_mask(mesh, patches_of_edge(layout, e));
+  std::vector<bool> mask = patch_mask(mesh, patches_of_edge(layout, e), layout.sides[side].chains[e]);
   for (const VertexHandle w : avoided) {
     for (const FaceHandle f : mesh.vf_range(w)) mask[f.idx()] = false;
   }
