@@ -138,8 +138,32 @@ std::vector<std::array<int, 3>> triangle_neighbours(const std::vector<std::array
   return neighbours;
 }
 
-// Steps a walk between neighbouring image triangles may take before the point locator is asked.
+// Steps a walk between neighbouring triangles may take before a point locator is asked.
 constexpr int kMaxWalkSteps = 16;
+
+// The triangle of (uv, triangles) that holds p strictly inside, walked to from triangle `start`
+// across the side p lies farthest beyond (`neighbours` from triangle_neighbours): in an embedding
+// the only triangle holding p, the one a point locator finds. -1 when the walk meets the
+// boundary, a side p lies on or a degenerate triangle, or takes more than kMaxWalkSteps.
+int walk_to(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& uv,
+            const std::vector<std::array<int, 3>>& triangles,
+            const std::vector<std::array<int, 3>>& neighbours, int start) {
+  int f = start;
+  for (int step = 0; step < kMaxWalkSteps && f >= 0; ++step) {
+    const std::array<int, 3>& t = triangles[f];
+    const double area = signed_area2(uv[t[0]], uv[t[1]], uv[t[2]]);
+    if (area == 0.0) return -1;
+    const double sign = area > 0.0 ? 1.0 : -1.0;  // either orientation
+    const std::array<double, 3> beyond = {sign * signed_area2(p, uv[t[1]], uv[t[2]]),
+                                          sign * signed_area2(uv[t[0]], p, uv[t[2]]),
+                                          sign * signed_area2(uv[t[0]], uv[t[1]], p)};
+    const int k = static_cast<int>(std::min_element(beyond.begin(), beyond.end()) - beyond.begin());
+    if (beyond[k] > 0.0) return f;
+    if (beyond[k] == 0.0) return -1;
+    f = neighbours[f][k];
+  }
+  return -1;
+}
 
 class Relaxation {
  public:
@@ -148,7 +172,8 @@ class Relaxation {
         target_(target),
         scale_(scale),
         metrics_(target_metrics(target)),
-        neighbours_(triangle_neighbours(source.triangles)) {
+        neighbours_(triangle_neighbours(source.triangles)),
+        target_neighbours_(triangle_neighbours(target.patch->triangles)) {
     const size_t n_faces = source.triangles.size();
     frames_.reserve(n_faces);
     for (const std::array<int, 3>& t : source.triangles) {
@@ -290,15 +315,20 @@ class Relaxation {
     std::vector<Matrix2> sum(n_faces, Matrix2::Zero());
     std::vector<double> covered(n_faces, 0.0);
     // The images move little between calls (line-search steps), so the triangle that held a
-    // centroid last time is tried first; the grid is built only when one moved out of it.
+    // centroid last time is tried first, then a walk from it (on the first call, from the previous
+    // centroid's triangle: consecutive triangles lie close); the grid is built only when a walk
+    // fails.
     std::optional<PointLocator> images;
+    int previous = -1;
     holder_.resize(metrics_.metric.size(), -1);
     centroid_holder_.resize(n_faces, -1);
     for (size_t t = 0; t < metrics_.metric.size(); ++t) {
       if (metrics_.uv_area[t] <= 0.0) continue;
       int& f = holder_[t];
       if (f < 0 || !strictly_inside(metrics_.centroid[t], uv, source_.triangles[f])) {
-        const int walked = f < 0 ? -1 : walk_to(metrics_.centroid[t], uv, f);
+        const int start = f >= 0 ? f : previous;
+        const int walked =
+            start < 0 ? -1 : walk_to(metrics_.centroid[t], uv, source_.triangles, neighbours_, start);
         if (walked >= 0) {
           f = walked;
         } else {
@@ -306,10 +336,12 @@ class Relaxation {
           f = images->locate(metrics_.centroid[t]).triangle;
         }
       }
+      previous = f;
       sum[f] += metrics_.uv_area[t] * metrics_.metric[t];
       covered[f] += metrics_.uv_area[t];
     }
     std::vector<Matrix2> averaged(n_faces);
+    int previous_under = -1;
     for (size_t f = 0; f < n_faces; ++f) {
       const std::array<int, 3>& t = source_.triangles[f];
       const double image_area = 0.5 * signed_area2(uv[t[0]], uv[t[1]], uv[t[2]]);
@@ -318,33 +350,20 @@ class Relaxation {
         const Eigen::Vector2d centroid = (uv[t[0]] + uv[t[1]] + uv[t[2]]) / 3.0;
         // The same cache for the target triangle under each image triangle's centroid.
         int& under = centroid_holder_[f];
-        if (under < 0 || !strictly_inside(centroid, *target_.uv, target_.patch->triangles[under]))
-          under = target_.locator->locate(centroid).triangle;
+        if (under < 0 || !strictly_inside(centroid, *target_.uv, target_.patch->triangles[under])) {
+          const std::vector<std::array<int, 3>>& target_triangles = target_.patch->triangles;
+          const int start = under >= 0 ? under : previous_under;
+          const int walked =
+              start < 0 ? -1 : walk_to(centroid, *target_.uv, target_triangles, target_neighbours_, start);
+          under = walked >= 0 ? walked : target_.locator->locate(centroid).triangle;
+        }
+        previous_under = under;
         sum[f] += uncovered * metrics_.metric[under];
         covered[f] += uncovered;
       }
       averaged[f] = sum[f] / covered[f];
     }
     return averaged;
-  }
-
-  // The image triangle that holds p strictly inside, walked to from image triangle `start`
-  // across the side p lies farthest beyond: then, the images being an embedding, the one the
-  // point locator would find. -1 when the walk meets the boundary, a side p lies on, or takes
-  // more than kMaxWalkSteps. \pre every image triangle counter-clockwise (energy checks it)
-  int walk_to(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& uv, int start) const {
-    int f = start;
-    for (int step = 0; step < kMaxWalkSteps && f >= 0; ++step) {
-      const std::array<int, 3>& t = source_.triangles[f];
-      const std::array<double, 3> beyond = {signed_area2(p, uv[t[1]], uv[t[2]]),
-                                            signed_area2(uv[t[0]], p, uv[t[2]]),
-                                            signed_area2(uv[t[0]], uv[t[1]], p)};
-      const int k = static_cast<int>(std::min_element(beyond.begin(), beyond.end()) - beyond.begin());
-      if (beyond[k] > 0.0) return f;
-      if (beyond[k] == 0.0) return -1;
-      f = neighbours_[f][k];
-    }
-    return -1;
   }
 
   // Whether p lies inside the image of `triangle` and on none of its sides: then, the images being
@@ -373,7 +392,8 @@ class Relaxation {
   double scale_ = 1.0;
   TargetMetrics metrics_;
   std::vector<FaceFrame> frames_;
-  std::vector<std::array<int, 3>> neighbours_;  // of the image triangles (triangle_neighbours)
+  std::vector<std::array<int, 3>> neighbours_;         // of the image triangles (triangle_neighbours)
+  std::vector<std::array<int, 3>> target_neighbours_;  // of the target parameter triangles
   double area_ = 0.0;
   std::vector<int> free_index_;  // #V: unknown index of a free vertex, -1 on the boundary
   Eigen::SparseMatrix<double> system_;  // the SLIM proxy's matrix (its pattern is fixed)
