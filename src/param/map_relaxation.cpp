@@ -112,28 +112,35 @@ double first_collapse(const Matrix2& edges, const Matrix2& step) {
 }
 
 // Per triangle, per side k (the side opposite corner k): the triangle across it, -1 on the
-// boundary.
+// boundary. Through each vertex's triangles (a few), which costs less than sorting the sides.
 std::vector<std::array<int, 3>> triangle_neighbours(const std::vector<std::array<int, 3>>& triangles) {
-  struct Side {
-    std::array<int, 2> ends;  // ascending vertex ids
-    int triangle = 0;
-    int k = 0;
-  };
-  std::vector<Side> sides;
-  sides.reserve(3 * triangles.size());
+  int n_vertices = 0;
+  for (const std::array<int, 3>& t : triangles) n_vertices = std::max({n_vertices, t[0], t[1], t[2]});
+  ++n_vertices;
+  // The triangles at vertex v are at[start[v] .. start[v + 1]).
+  std::vector<int> start(n_vertices + 1, 0);
+  for (const std::array<int, 3>& t : triangles) {
+    for (int v : t) ++start[v + 1];
+  }
+  for (int v = 0; v < n_vertices; ++v) start[v + 1] += start[v];
+  std::vector<int> at(start.back());
+  std::vector<int> filled(start.begin(), start.end() - 1);
+  for (int f = 0; f < static_cast<int>(triangles.size()); ++f) {
+    for (int v : triangles[f]) at[filled[v]++] = f;
+  }
+  std::vector<std::array<int, 3>> neighbours(triangles.size(), {-1, -1, -1});
   for (int f = 0; f < static_cast<int>(triangles.size()); ++f) {
     for (int k = 0; k < 3; ++k) {
       const int a = triangles[f][(k + 1) % 3];
       const int b = triangles[f][(k + 2) % 3];
-      sides.push_back({{std::min(a, b), std::max(a, b)}, f, k});
+      for (int i = start[a]; i < start[a + 1]; ++i) {
+        const std::array<int, 3>& g = triangles[at[i]];
+        if (at[i] != f && (g[0] == b || g[1] == b || g[2] == b)) {
+          neighbours[f][k] = at[i];
+          break;
+        }
+      }
     }
-  }
-  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) { return x.ends < y.ends; });
-  std::vector<std::array<int, 3>> neighbours(triangles.size(), {-1, -1, -1});
-  for (std::size_t i = 0; i + 1 < sides.size(); ++i) {
-    if (sides[i].ends != sides[i + 1].ends) continue;
-    neighbours[sides[i].triangle][sides[i].k] = sides[i + 1].triangle;
-    neighbours[sides[i + 1].triangle][sides[i + 1].k] = sides[i].triangle;
   }
   return neighbours;
 }
@@ -172,8 +179,7 @@ class Relaxation {
         target_(target),
         scale_(scale),
         metrics_(target_metrics(target)),
-        neighbours_(triangle_neighbours(source.triangles)),
-        target_neighbours_(triangle_neighbours(target.patch->triangles)) {
+        neighbours_(triangle_neighbours(source.triangles)) {
     const size_t n_faces = source.triangles.size();
     frames_.reserve(n_faces);
     for (const std::array<int, 3>& t : source.triangles) {
@@ -353,6 +359,8 @@ class Relaxation {
         if (under < 0 || !strictly_inside(centroid, *target_.uv, target_.patch->triangles[under])) {
           const std::vector<std::array<int, 3>>& target_triangles = target_.patch->triangles;
           const int start = under >= 0 ? under : previous_under;
+          if (start >= 0 && target_neighbours_.empty())  // built at the first walk on the target
+            target_neighbours_ = triangle_neighbours(target_triangles);
           const int walked =
               start < 0 ? -1 : walk_to(centroid, *target_.uv, target_triangles, target_neighbours_, start);
           under = walked >= 0 ? walked : target_.locator->locate(centroid).triangle;
@@ -393,7 +401,7 @@ class Relaxation {
   TargetMetrics metrics_;
   std::vector<FaceFrame> frames_;
   std::vector<std::array<int, 3>> neighbours_;         // of the image triangles (triangle_neighbours)
-  std::vector<std::array<int, 3>> target_neighbours_;  // of the target parameter triangles
+  mutable std::vector<std::array<int, 3>> target_neighbours_;  // of the target parameter triangles; a cache
   double area_ = 0.0;
   std::vector<int> free_index_;  // #V: unknown index of a free vertex, -1 on the boundary
   Eigen::SparseMatrix<double> system_;  // the SLIM proxy's matrix (its pattern is fixed)
