@@ -36,39 +36,12 @@ class IndexMap {
   std::vector<int> global_;
 };
 
-// The faces of the two patches: a flood from the two faces beside the first mesh edge of the
-// quad's edge chain, over faces whose patch id is one of `patches` (each patch is a disk).
-std::vector<int> quad_faces(const Mesh& mesh, const std::vector<VertexHandle>& chain,
-                            const std::array<int, 2>& patches) {
-  const auto patch = patch_property(mesh);
-  const HalfedgeHandle seed = mesh.find_halfedge(chain[0], chain[1]);
-  XP_ASSERT(seed.is_valid());
-  std::vector<char> seen(mesh.n_faces(), 0);
-  std::vector<int> faces;
-  for (const FaceHandle f : std::array<FaceHandle, 2>{mesh.face_handle(seed), mesh.opposite_face_handle(seed)}) {
-    XP_ASSERT(f.is_valid());
-    seen[f.idx()] = 1;
-    faces.push_back(f.idx());
-  }
-  for (std::size_t next = 0; next < faces.size(); ++next) {
-    for (const HalfedgeHandle h : mesh.fh_range(FaceHandle(faces[next]))) {
-      const FaceHandle g = mesh.opposite_face_handle(h);
-      if (!g.is_valid() || seen[g.idx()]) continue;
-      const int p = mesh.property(patch, g);
-      if (p != patches[0] && p != patches[1]) continue;
-      seen[g.idx()] = 1;
-      faces.push_back(g.idx());
-    }
-  }
-  return faces;
-}
-
 // Copies one side's quad into `ws.layout.sides[side]` and closes it with the cap (file comment
 // of the header for the order-isomorphism this keeps).
 void copy_side(const Layout& layout, int side, QuadWorkspace& ws) {
   const LayoutSide& full = layout.sides[side];
   const Mesh& mesh = full.mesh;
-  const IndexMap faces(quad_faces(mesh, full.chains[ws.edges[0]], ws.patches));
+  const IndexMap faces(patch_faces(mesh, ws.patches, full.chains[ws.edges[0]]));
   std::vector<int> vertex_ids, edge_ids;
   for (const int f : faces.global()) {
     for (const HalfedgeHandle h : mesh.fh_range(FaceHandle(f))) {

@@ -29,32 +29,42 @@ std::array<int, 2> patches_of_edge(const Layout& layout, int e) {
   return patches;
 }
 
-// patch_mask and relabel_region run once per stretched or swapped curve on meshes of up to a few
-// hundred thousand faces (a refined target): both visit the region's faces only, from the faces
-// beside the chain, so a curve costs what its two patches hold.
+// patch_faces, patch_mask and relabel_region run once per stretched or swapped curve on meshes of
+// up to a few hundred thousand faces (a refined target): they visit the region's faces only, from
+// the faces beside the chain, so a curve costs what its two patches hold.
 
-std::vector<bool> patch_mask(const Mesh& mesh, const std::array<int, 2>& patches,
+std::vector<int> patch_faces(const Mesh& mesh, const std::array<int, 2>& patches,
                              const std::vector<VertexHandle>& chain) {
   XP_ASSERT(chain.size() >= 2);
   const std::vector<int>& labels = mesh.property(patch_property(mesh)).data_vector();
-  std::vector<bool> mask(mesh.n_faces(), false);
-  std::vector<FaceHandle> stack;
-  const auto reach = [&](FaceHandle f) {
-    if (!f.is_valid() || mask[f.idx()]) return;
-    const int p = labels[f.idx()];
-    if (p != patches[0] && p != patches[1]) return;
-    mask[f.idx()] = true;
-    stack.push_back(f);
+  const auto in_patches = [&](FaceHandle f) {
+    return labels[f.idx()] == patches[0] || labels[f.idx()] == patches[1];
   };
-  const HalfedgeHandle first = mesh.find_halfedge(chain[0], chain[1]);
-  XP_ASSERT_MSG(first.is_valid(), "the chain's first two vertices share no edge");
-  reach(mesh.face_handle(first));
-  reach(mesh.opposite_face_handle(first));
-  while (!stack.empty()) {
-    const FaceHandle f = stack.back();
-    stack.pop_back();
-    for (const HalfedgeHandle h : mesh.fh_range(f)) reach(mesh.opposite_face_handle(h));
+  const HalfedgeHandle seed = mesh.find_halfedge(chain[0], chain[1]);
+  XP_ASSERT_MSG(seed.is_valid(), "the chain's first two vertices share no edge");
+  std::vector<char> seen(mesh.n_faces(), 0);
+  std::vector<int> faces;
+  const std::array<FaceHandle, 2> beside = {mesh.face_handle(seed), mesh.opposite_face_handle(seed)};
+  for (const FaceHandle f : beside) {
+    XP_ASSERT_MSG(f.is_valid() && in_patches(f), "a face beside the chain is outside its two patches");
+    seen[f.idx()] = 1;
+    faces.push_back(f.idx());
   }
+  for (std::size_t next = 0; next < faces.size(); ++next) {
+    for (const HalfedgeHandle h : mesh.fh_range(FaceHandle(faces[next]))) {
+      const FaceHandle g = mesh.opposite_face_handle(h);
+      if (!g.is_valid() || seen[g.idx()] || !in_patches(g)) continue;
+      seen[g.idx()] = 1;
+      faces.push_back(g.idx());
+    }
+  }
+  return faces;
+}
+
+std::vector<bool> patch_mask(const Mesh& mesh, const std::array<int, 2>& patches,
+                             const std::vector<VertexHandle>& chain) {
+  std::vector<bool> mask(mesh.n_faces(), false);
+  for (const int f : patch_faces(mesh, patches, chain)) mask[f] = true;
   return mask;
 }
 

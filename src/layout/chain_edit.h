@@ -20,11 +20,15 @@ OpenMesh::FPropHandleT<int> patch_property(const Mesh& mesh);
 /// \throw LayoutError when a halfedge of e lies in no patch
 std::array<int, 2> patches_of_edge(const Layout& layout, int e);
 
-/// Per face of `mesh`: true when its patch id is one of `patches`, found from the faces on
-/// either side of `chain`'s first edge (the chain between the two patches), so only the two
-/// patches' faces are visited.
+/// The faces (ids) whose patch id is one of `patches`, found from the faces on either side of
+/// `chain`'s first edge (the chain between the two patches), so only the two patches' faces are
+/// visited; in the order reached.
 /// \pre each patch's faces are connected across edges (assign_patches and relabel_region make
 ///      them so)
+std::vector<int> patch_faces(const Mesh& mesh, const std::array<int, 2>& patches,
+                             const std::vector<VertexHandle>& chain);
+
+/// The same faces as a mask over every face of `mesh`.
 std::vector<bool> patch_mask(const Mesh& mesh, const std::array<int, 2>& patches,
                              const std::vector<VertexHandle>& chain);
 
