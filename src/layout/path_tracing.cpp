@@ -75,7 +75,7 @@ TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle
   // leaves the queue at its shortest distance, as in Dijkstra's order, and the search settles the
   // target anchor after far fewer vertices than a disk of the path's length.
   const Eigen::Vector3d target = position(mesh, to);
-  using Entry = std::pair<double, int>;  // (distance + remaining straight line, vertex); -1: target anchor
+  using Entry = std::pair<double, int>;  // (distance + straight line left, vertex); -1: target anchor
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
   const auto reach = [&](int v, double d, int parent) {
     if (scratch.stamp[v] == visit && scratch.distance[v] <= d) return;
@@ -98,13 +98,13 @@ TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle
     const VertexHandle vh(v);
     const Eigen::Vector3d p = position(mesh, vh);
     const double d = scratch.distance[v];
-    if (key > d + (target - p).norm()) continue;  // a stale entry: v was reached shorter since
+    const double through = d + (target - p).norm();  // v's key, and a path's length when v is its last
+    if (key > through) continue;  // a stale entry: v was reached shorter since
     if (is_end(v)) {
-      const double total = d + (target - p).norm();
-      if (total < best || (total == best && v < best_last)) {
-        best = total;
+      if (through < best || (through == best && v < best_last)) {
+        best = through;
         best_last = v;
-        queue.emplace(total, -1);
+        queue.emplace(through, -1);
       }
     }
     for (const VertexHandle w : mesh.vv_range(vh)) {
