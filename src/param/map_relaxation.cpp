@@ -172,6 +172,18 @@ int walk_to(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& uv,
   return -1;
 }
 
+// The triangle of (uv, triangles) holding p: the one a walk reaches from `cached` (which stays
+// while it still holds p) or, without one, from `near` (a triangle close by); else `locate(p)`.
+template <typename Locate>
+int holding_triangle(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& uv,
+                     const std::vector<std::array<int, 3>>& triangles,
+                     const std::vector<std::array<int, 3>>& neighbours, int cached, int near,
+                     const Locate& locate) {
+  const int start = cached >= 0 ? cached : near;
+  const int walked = start < 0 ? -1 : walk_to(p, uv, triangles, neighbours, start);
+  return walked >= 0 ? walked : locate(p);
+}
+
 class Relaxation {
  public:
   Relaxation(const DiskPatch& source, const TargetPatchView& target, double scale)
@@ -179,7 +191,8 @@ class Relaxation {
         target_(target),
         scale_(scale),
         metrics_(target_metrics(target)),
-        neighbours_(triangle_neighbours(source.triangles)) {
+        neighbours_(triangle_neighbours(source.triangles)),
+        target_neighbours_(triangle_neighbours(target.patch->triangles)) {
     const size_t n_faces = source.triangles.size();
     frames_.reserve(n_faces);
     for (const std::array<int, 3>& t : source.triangles) {
@@ -321,32 +334,27 @@ class Relaxation {
     std::vector<Matrix2> sum(n_faces, Matrix2::Zero());
     std::vector<double> covered(n_faces, 0.0);
     // The images move little between calls (line-search steps), so the triangle that held a
-    // centroid last time is tried first, then a walk from it (on the first call, from the previous
-    // centroid's triangle: consecutive triangles lie close); the grid is built only when a walk
-    // fails.
+    // centroid last time is walked from (on the first call, the previous centroid's triangle:
+    // consecutive triangles lie close); the grid is built only when a walk fails.
     std::optional<PointLocator> images;
+    const auto locate_image = [&](const Eigen::Vector2d& p) {
+      if (!images) images.emplace(uv, source_.triangles);
+      return images->locate(p).triangle;
+    };
     int previous = -1;
     holder_.resize(metrics_.metric.size(), -1);
     centroid_holder_.resize(n_faces, -1);
     for (size_t t = 0; t < metrics_.metric.size(); ++t) {
       if (metrics_.uv_area[t] <= 0.0) continue;
       int& f = holder_[t];
-      if (f < 0 || !strictly_inside(metrics_.centroid[t], uv, source_.triangles[f])) {
-        const int start = f >= 0 ? f : previous;
-        const int walked =
-            start < 0 ? -1 : walk_to(metrics_.centroid[t], uv, source_.triangles, neighbours_, start);
-        if (walked >= 0) {
-          f = walked;
-        } else {
-          if (!images) images.emplace(uv, source_.triangles);
-          f = images->locate(metrics_.centroid[t]).triangle;
-        }
-      }
+      f = holding_triangle(metrics_.centroid[t], uv, source_.triangles, neighbours_, f, previous,
+                           locate_image);
       previous = f;
       sum[f] += metrics_.uv_area[t] * metrics_.metric[t];
       covered[f] += metrics_.uv_area[t];
     }
     std::vector<Matrix2> averaged(n_faces);
+    const auto locate_target = [&](const Eigen::Vector2d& p) { return target_.locator->locate(p).triangle; };
     int previous_under = -1;
     for (size_t f = 0; f < n_faces; ++f) {
       const std::array<int, 3>& t = source_.triangles[f];
@@ -356,15 +364,8 @@ class Relaxation {
         const Eigen::Vector2d centroid = (uv[t[0]] + uv[t[1]] + uv[t[2]]) / 3.0;
         // The same cache for the target triangle under each image triangle's centroid.
         int& under = centroid_holder_[f];
-        if (under < 0 || !strictly_inside(centroid, *target_.uv, target_.patch->triangles[under])) {
-          const std::vector<std::array<int, 3>>& target_triangles = target_.patch->triangles;
-          const int start = under >= 0 ? under : previous_under;
-          if (start >= 0 && target_neighbours_.empty())  // built at the first walk on the target
-            target_neighbours_ = triangle_neighbours(target_triangles);
-          const int walked =
-              start < 0 ? -1 : walk_to(centroid, *target_.uv, target_triangles, target_neighbours_, start);
-          under = walked >= 0 ? walked : target_.locator->locate(centroid).triangle;
-        }
+        under = holding_triangle(centroid, *target_.uv, target_.patch->triangles, target_neighbours_, under,
+                                 previous_under, locate_target);
         previous_under = under;
         sum[f] += uncovered * metrics_.metric[under];
         covered[f] += uncovered;
@@ -372,16 +373,6 @@ class Relaxation {
       averaged[f] = sum[f] / covered[f];
     }
     return averaged;
-  }
-
-  // Whether p lies inside the image of `triangle` and on none of its sides: then, the images being
-  // an embedding, no other image triangle holds it.
-  static bool strictly_inside(const Eigen::Vector2d& p, const std::vector<Eigen::Vector2d>& uv,
-                              const std::array<int, 3>& triangle) {
-    const Eigen::Vector2d &a = uv[triangle[0]], &b = uv[triangle[1]], &c = uv[triangle[2]];
-    const double sign = signed_area2(a, b, c) > 0.0 ? 1.0 : -1.0;  // either orientation
-    return sign * signed_area2(p, b, c) > 0.0 && sign * signed_area2(a, p, c) > 0.0 &&
-           sign * signed_area2(a, b, p) > 0.0;
   }
 
   // Upper-triangular R with R^T R = G; G is nudged to definite when a degenerate target
@@ -401,7 +392,7 @@ class Relaxation {
   TargetMetrics metrics_;
   std::vector<FaceFrame> frames_;
   std::vector<std::array<int, 3>> neighbours_;         // of the image triangles (triangle_neighbours)
-  mutable std::vector<std::array<int, 3>> target_neighbours_;  // of the target parameter triangles; a cache
+  std::vector<std::array<int, 3>> target_neighbours_;  // of the target parameter triangles
   double area_ = 0.0;
   std::vector<int> free_index_;  // #V: unknown index of a free vertex, -1 on the boundary
   Eigen::SparseMatrix<double> system_;  // the SLIM proxy's matrix (its pattern is fixed)
