@@ -21,18 +21,9 @@
 namespace xparam {
 namespace {
 
-// Layouts built once per test program (the construction dominates the run time).
-const Layout& human_layout() {
-  static const Layout layout = [] {
-    const Mesh man = test::load(test::data_path("human_man.obj"));
-    const Mesh woman = test::load(test::data_path("human_woman.obj"));
-    const std::vector<int> ids = test::anchor_vertex_ids("human_man.anchors.json");
-    EXPECT_EQ(ids, test::anchor_vertex_ids("human_woman.anchors.json"));
-    return build_consistent_layout(man, test::handles(ids), woman, test::handles(ids)).layout;
-  }();
-  return layout;
-}
+using test::human_layout;
 
+// Built once per test program (the construction dominates the run time).
 const Layout& spot_layout() {
   static const Layout layout = [] {
     const Mesh low = test::load(test::data_path("spot_low_resolution.obj"));

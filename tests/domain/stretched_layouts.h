@@ -19,10 +19,7 @@ inline constexpr double kTrialTolerance = 1e-12;
 // The man against the woman with the 41 bundled landmarks, curves stretched.
 inline const Layout& stretched_human_layout() {
   static const Layout layout = [] {
-    const Mesh man = load(data_path("human_man.obj"));
-    const Mesh woman = load(data_path("human_woman.obj"));
-    const std::vector<int> ids = anchor_vertex_ids("human_man.anchors.json");
-    Layout built = build_consistent_layout(man, handles(ids), woman, handles(ids)).layout;
+    Layout built = human_layout();
     stretch_layout(built);
     return built;
   }();

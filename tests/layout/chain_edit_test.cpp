@@ -2,9 +2,7 @@
 // only the faces they reach from the curve, so they must reach all of them.
 #include "layout/chain_edit.h"
 
-#include "layout/consistent_layout.h"
 #include "layout_fixtures.h"
-#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -14,17 +12,6 @@
 
 namespace xparam {
 namespace {
-
-// The bundled man and woman with 20 anchors spread over the man (the same vertex ids on both).
-const ConsistentLayoutResult& human_layout() {
-  static const ConsistentLayoutResult result = [] {
-    const Mesh man = test::load(test::data_path("human_man.obj"));
-    const Mesh woman = test::load(test::data_path("human_woman.obj"));
-    const std::vector<int> ids = test::farthest_points(man, 20, 412);
-    return build_consistent_layout(man, test::handles(ids), woman, test::handles(ids));
-  }();
-  return result;
-}
 
 // Every face whose patch is one of `patches`, by reading every face's label.
 std::vector<bool> labelled(const Mesh& mesh, const std::array<int, 2>& patches) {
@@ -38,7 +25,7 @@ std::vector<bool> labelled(const Mesh& mesh, const std::array<int, 2>& patches) 
 }
 
 TEST(ChainEdit, PatchMaskReachesEveryFaceOfTheCurvesTwoPatches) {
-  const Layout& layout = human_layout().layout;
+  const Layout& layout = test::human_layout();
   for (int side = 0; side < 2; ++side) {
     const Mesh& mesh = layout.sides[side].mesh;
     for (int e = 0; e < static_cast<int>(layout.edges.size()); ++e) {
@@ -53,7 +40,7 @@ TEST(ChainEdit, PatchMaskReachesEveryFaceOfTheCurvesTwoPatches) {
 // a region labelled all one patch and all the other: the floods from either side of the curve
 // reach their whole patch, and nothing beyond.
 TEST(ChainEdit, RelabellingThroughTheDividingCurveRestoresEveryLabel) {
-  const Layout& layout = human_layout().layout;
+  const Layout& layout = test::human_layout();
   for (int side = 0; side < 2; ++side) {
     Mesh mesh = layout.sides[side].mesh;
     const auto handle = patch_property(mesh);

@@ -173,6 +173,19 @@ inline VertexHandle vertex_at(const Mesh& mesh, const Eigen::Vector3d& p) {
   return best;
 }
 
+/// The bundled man against the bundled woman with their 41 bundled landmarks (the same vertex
+/// ids on both), built once per test program.
+inline const Layout& human_layout() {
+  static const Layout layout = [] {
+    const Mesh man = load(data_path("human_man.obj"));
+    const Mesh woman = load(data_path("human_woman.obj"));
+    const std::vector<int> ids = anchor_vertex_ids("human_man.anchors.json");
+    EXPECT_EQ(ids, anchor_vertex_ids("human_woman.anchors.json"));
+    return build_consistent_layout(man, handles(ids), woman, handles(ids)).layout;
+  }();
+  return layout;
+}
+
 /// The bundled man laid out against himself with his bundled anchors, named "a0", "a1", ...
 struct SelfLayout {
   Mesh mesh = load(data_path("human_man.obj"));
