@@ -5,7 +5,6 @@
 #include "domain/patch_merging.h"
 #include "geodesic/locally_shortest.h"
 #include "layout/chain_edit.h"
-#include "layout/vertex_labels.h"
 
 #include <algorithm>
 #include <string>
@@ -58,14 +57,24 @@ void stretch_side(Layout& layout, int side, int e, const std::array<int, 2>& pat
   const int vertices_before = static_cast<int>(mesh.n_vertices());
   const std::vector<VertexHandle> chain = s.chains[e];
   // Blocked vertices: anchors and the interior of the other chains (this chain's own interior
-  // lies inside the region and is never a contact).
-  const VertexLabels labels = label_vertices(layout, side);
+  // lies inside the region and is never a contact). Only the few contacts are asked, so they
+  // are looked up in the anchors and chains rather than every vertex labelled.
   const auto blocked = [&](VertexHandle v) {
-    return v.idx() < vertices_before && labels.blocked(v) && labels.edge[v.idx()] != e;
+    if (v.idx() >= vertices_before) return false;
+    const std::vector<VertexHandle>& anchors = s.anchor_vertices;
+    if (std::find(anchors.begin(), anchors.end(), v) != anchors.end()) return true;
+    for (int other = 0; other < static_cast<int>(s.chains.size()); ++other) {
+      const std::vector<VertexHandle>& c = s.chains[other];
+      if (other != e && c.size() > 2 && std::find(c.begin() + 1, c.end() - 1, v) != c.end() - 1) return true;
+    }
+    return false;
   };
 
+  const std::vector<int> region_faces = patch_faces(mesh, patches, chain);
+  const int faces_before = static_cast<int>(mesh.n_faces());
   RegionMasks masks;
-  masks.region = patch_mask(mesh, patches, chain);
+  masks.region.assign(mesh.n_faces(), false);
+  for (int f : region_faces) masks.region[f] = true;
   masks.free = masks.region;
   StraightenedCurve curve;
   try {
@@ -89,10 +98,13 @@ void stretch_side(Layout& layout, int side, int e, const std::array<int, 2>& pat
     }
     // The thin faces at avoided vertices stay in the region: remember them before insertion
     // grows the free mask (insertion only splits free faces, so they keep their handles).
+    // The region: its faces at the start and the pieces clearance split off them.
     std::vector<FaceHandle> thin;
-    for (std::size_t f = 0; f < masks.region.size(); ++f) {
-      if (masks.region[f] && !masks.free[f]) thin.emplace_back(static_cast<int>(f));
-    }
+    const auto keep_if_thin = [&](int f) {
+      if (masks.region[f] && !masks.free[f]) thin.emplace_back(f);
+    };
+    for (int f : region_faces) keep_if_thin(f);
+    for (int f = faces_before; f < static_cast<int>(masks.region.size()); ++f) keep_if_thin(f);
     const StraightenResult inserted = insert_curve(mesh, masks.free, curve);
     std::vector<bool> region = masks.free;
     for (const FaceHandle f : thin) region[f.idx()] = true;
