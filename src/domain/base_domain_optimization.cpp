@@ -258,7 +258,7 @@ class BoundarySwapper {
     for (int side = 0; side < 2; ++side) {
       lengths_[side][e] = curve_length(layout_, side, e);
       for (int s : sides) lengths_[side][s] = curve_length(layout_, side, s);
-      areas_[side] = patch_areas(layout_, side);
+      remeasure_patch_areas(layout_, side, e, {quad->left_patch, quad->right_patch}, areas_[side]);
     }
     // Only the quads of the four sides changed (Algorithm 1); e itself would swap back.
     evaluate_and_push({sides.begin(), sides.end()});

@@ -2,8 +2,11 @@
 
 #include "core/errors.h"
 #include "domain/patch_merging.h"
+#include "layout/chain_edit.h"
 
 #include <Eigen/Geometry>
+
+#include <algorithm>
 
 namespace xparam {
 namespace {
@@ -47,19 +50,36 @@ std::vector<double> curve_lengths(const Layout& layout, int side) {
   return lengths;
 }
 
+namespace {
+
+double face_area(const Mesh& mesh, FaceHandle f) {
+  auto v = mesh.cfv_iter(f);
+  const Eigen::Vector3d p0 = position(mesh, *v);
+  const Eigen::Vector3d p1 = position(mesh, *++v);
+  const Eigen::Vector3d p2 = position(mesh, *++v);
+  return 0.5 * (p1 - p0).cross(p2 - p0).norm();
+}
+
+}  // namespace
+
 std::vector<double> patch_areas(const Layout& layout, int side) {
   const Mesh& mesh = layout.sides[side].mesh;
   std::vector<double> areas(layout.patches.size(), 0.0);
   for (FaceHandle f : mesh.faces()) {
     const int p = patch_of(mesh, f);
     XP_ASSERT_MSG(p >= 0 && p < static_cast<int>(areas.size()), "side " << side << " face " << f.idx() << " has patch " << p);
-    auto v = mesh.cfv_iter(f);
-    const Eigen::Vector3d p0 = position(mesh, *v);
-    const Eigen::Vector3d p1 = position(mesh, *++v);
-    const Eigen::Vector3d p2 = position(mesh, *++v);
-    areas[p] += 0.5 * (p1 - p0).cross(p2 - p0).norm();
+    areas[p] += face_area(mesh, f);
   }
   return areas;
+}
+
+void remeasure_patch_areas(const Layout& layout, int side, int e, const std::array<int, 2>& patches,
+                           std::vector<double>& areas) {
+  const Mesh& mesh = layout.sides[side].mesh;
+  std::vector<int> faces = patch_faces(mesh, patches, layout.sides[side].chains[e]);
+  std::sort(faces.begin(), faces.end());
+  areas[patches[0]] = areas[patches[1]] = 0.0;
+  for (int f : faces) areas[patch_of(mesh, FaceHandle(f))] += face_area(mesh, FaceHandle(f));
 }
 
 std::array<int, 4> quad_side_edges(const Layout& layout, const SwapQuad& quad) {

@@ -23,6 +23,12 @@ double curve_length(const Layout& layout, int side, int e);
 /// \pre face property "xparam:patch" set on `side`, every face assigned
 std::vector<double> patch_areas(const Layout& layout, int side);
 
+/// After a swap: the areas of the two patches beside layout edge `e` measured again in
+/// `areas` (patch_areas of `side`, whose other patches kept their faces), from their faces
+/// alone but in face order, so `areas` equals patch_areas to the bit.
+void remeasure_patch_areas(const Layout& layout, int side, int e, const std::array<int, 2>& patches,
+                           std::vector<double>& areas);
+
 /// The layout edges of the quad's sides a-r, r-b, b-l, l-a, in that order (paper Fig. 6).
 std::array<int, 4> quad_side_edges(const Layout& layout, const SwapQuad& quad);
 

@@ -5,6 +5,7 @@
 #include "domain/boundary_swap.h"
 
 #include "core/errors.h"
+#include "domain/layout_measures.h"
 #include "domain/stretched_layouts.h"
 #include "geodesic/locally_shortest.h"
 #include "layout/chain_edit.h"
@@ -55,9 +56,12 @@ void expect_trial_matches(const Layout& layout, const SwapTrial& trial) {
   }
 }
 
-// `count` swaps of random edges (fixed seed); refused ones are checked to change nothing.
+// `count` swaps of random edges (fixed seed); refused ones are checked to change nothing. After
+// each swap, the patch areas measured again for the quad's patches alone (as the base-domain
+// optimization keeps them) equal those of the whole side to the bit.
 void random_swaps(const Layout& original, unsigned seed, int count, const std::string& what) {
   Layout layout = original;
+  std::array<std::vector<double>, 2> areas = {patch_areas(layout, 0), patch_areas(layout, 1)};
   std::mt19937 random(seed);
   int applied = 0, refused = 0;
   double seconds = 0.0;
@@ -84,6 +88,10 @@ void random_swaps(const Layout& original, unsigned seed, int count, const std::s
     EXPECT_EQ(layout.sides[0].chains[e].front(), layout.sides[0].anchor_vertices[quad.l]);
     EXPECT_EQ(layout.sides[1].chains[e].back(), layout.sides[1].anchor_vertices[quad.r]);
     expect_trial_matches(layout, trial);
+    for (int side = 0; side < 2; ++side) {
+      remeasure_patch_areas(layout, side, e, {quad.left_patch, quad.right_patch}, areas[side]);
+      EXPECT_EQ(areas[side], patch_areas(layout, side));
+    }
     const LayoutCheck check = check_layout(layout);
     ASSERT_TRUE(check.consistent()) << check.violations.front();
   }
