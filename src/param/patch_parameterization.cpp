@@ -8,9 +8,10 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <exception>
-#include <map>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -26,7 +27,6 @@ namespace {
 // boundary loop is `boundary_loop`, every vertex used.
 void check_disk(const DiskPatch& patch) {
   const int n_vertices = static_cast<int>(patch.positions.size());
-  std::map<std::pair<int, int>, int> directed;  // ordered, so messages name the same edge every run
   std::vector<char> used(n_vertices, 0);
   for (std::size_t f = 0; f < patch.triangles.size(); ++f) {
     const auto& t = patch.triangles[f];
@@ -39,23 +39,44 @@ void check_disk(const DiskPatch& patch) {
     }
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
       fail(patch, "triangle " + std::to_string(f) + " repeats a vertex");
-    for (int c = 0; c < 3; ++c) {
-      if (++directed[{t[c], t[(c + 1) % 3]}] > 1) {
-        fail(patch, "edge (" + std::to_string(t[c]) + ", " + std::to_string(t[(c + 1) % 3]) +
-                        ") is used twice in the same direction (non-manifold or inconsistent orientation)");
-      }
-    }
   }
   for (int v = 0; v < n_vertices; ++v) {
     if (!used[v]) fail(patch, "vertex " + std::to_string(v) + " is in no triangle");
   }
 
+  // The directed edges, sorted (a sorted vector, not a map: this check runs on every patch).
+  // Of the edges used twice in one direction, the one whose second use comes first in triangle
+  // order is named, so messages name the same edge every run.
+  const auto key = [](int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); };
+  std::vector<std::pair<std::uint64_t, std::size_t>> uses;  // (edge, 3 * triangle + corner)
+  uses.reserve(3 * patch.triangles.size());
+  for (std::size_t f = 0; f < patch.triangles.size(); ++f) {
+    const auto& t = patch.triangles[f];
+    for (int c = 0; c < 3; ++c) uses.emplace_back(key(t[c], t[(c + 1) % 3]), 3 * f + c);
+  }
+  std::sort(uses.begin(), uses.end());
+  std::size_t repeated = uses.size();
+  for (std::size_t k = 1; k < uses.size(); ++k) {
+    if (uses[k].first == uses[k - 1].first) repeated = std::min(repeated, uses[k].second);
+  }
+  if (repeated < uses.size()) {
+    const auto& t = patch.triangles[repeated / 3];
+    const int c = static_cast<int>(repeated % 3);
+    fail(patch, "edge (" + std::to_string(t[c]) + ", " + std::to_string(t[(c + 1) % 3]) +
+                    ") is used twice in the same direction (non-manifold or inconsistent orientation)");
+  }
+  std::vector<std::uint64_t> directed(uses.size());
+  for (std::size_t k = 0; k < uses.size(); ++k) directed[k] = uses[k].first;
+  const auto has = [&](int a, int b) { return std::binary_search(directed.begin(), directed.end(), key(a, b)); };
+
   int boundary_edges = 0;
   int undirected_edges = 0;
-  for (const auto& [edge, count] : directed) {
-    const bool twin = directed.count({edge.second, edge.first}) > 0;
+  for (const std::uint64_t edge : directed) {
+    const int a = static_cast<int>(edge >> 32);
+    const int b = static_cast<int>(edge & 0xffffffffu);
+    const bool twin = has(b, a);
     boundary_edges += !twin;
-    undirected_edges += twin ? (edge.first < edge.second) : 1;
+    undirected_edges += twin ? (a < b) : 1;
   }
   const std::vector<int>& loop = patch.boundary_loop;
   const int m = static_cast<int>(loop.size());
@@ -70,7 +91,7 @@ void check_disk(const DiskPatch& patch) {
     if (a < 0 || a >= n_vertices || on_loop[a])
       fail(patch, "boundary loop entry " + std::to_string(i) + " is invalid or repeated");
     on_loop[a] = 1;
-    if (!directed.count({a, b}) || directed.count({b, a})) {
+    if (b < 0 || b >= n_vertices || !has(a, b) || has(b, a)) {
       fail(patch, "boundary loop step (" + std::to_string(a) + ", " + std::to_string(b) +
                       ") is not a counter-clockwise boundary edge of the triangles");
     }

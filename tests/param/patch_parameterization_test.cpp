@@ -205,6 +205,15 @@ TEST(PatchParameterization, RejectsBadInput) {
   holed.triangles.erase(holed.triangles.begin());
   EXPECT_THROW(parameterize_patch(holed), ParamError);
 
+  DiskPatch flipped = good;  // one triangle turned over: its edges run as its neighbours' do
+  std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
+  try {
+    parameterize_patch(flipped);
+    ADD_FAILURE() << "a turned-over triangle was accepted";
+  } catch (const ParamError& error) {
+    EXPECT_NE(std::string(error.what()).find("used twice in the same direction"), std::string::npos) << error.what();
+  }
+
   DiskPatch collapsed = good;  // an interior vertex on top of its neighbour
   collapsed.positions[1] = collapsed.positions[0];
   EXPECT_THROW(parameterize_patch(collapsed), ParamError);
