@@ -47,7 +47,9 @@ void check_disk(const DiskPatch& patch) {
   // The directed edges, sorted (a sorted vector, not a map: this check runs on every patch).
   // Of the edges used twice in one direction, the one whose second use comes first in triangle
   // order is named, so messages name the same edge every run.
-  const auto key = [](int a, int b) { return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b); };
+  const auto key = [](int a, int b) {
+    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
+  };
   std::vector<std::pair<std::uint64_t, std::size_t>> uses;  // (edge, 3 * triangle + corner)
   uses.reserve(3 * patch.triangles.size());
   for (std::size_t f = 0; f < patch.triangles.size(); ++f) {
@@ -67,7 +69,9 @@ void check_disk(const DiskPatch& patch) {
   }
   std::vector<std::uint64_t> directed(uses.size());
   for (std::size_t k = 0; k < uses.size(); ++k) directed[k] = uses[k].first;
-  const auto has = [&](int a, int b) { return std::binary_search(directed.begin(), directed.end(), key(a, b)); };
+  const auto has = [&](int a, int b) {
+    return std::binary_search(directed.begin(), directed.end(), key(a, b));
+  };
 
   int boundary_edges = 0;
   int undirected_edges = 0;

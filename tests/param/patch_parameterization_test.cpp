@@ -211,7 +211,8 @@ TEST(PatchParameterization, RejectsBadInput) {
     parameterize_patch(flipped);
     ADD_FAILURE() << "a turned-over triangle was accepted";
   } catch (const ParamError& error) {
-    EXPECT_NE(std::string(error.what()).find("used twice in the same direction"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("used twice in the same direction"), std::string::npos)
+        << error.what();
   }
 
   DiskPatch collapsed = good;  // an interior vertex on top of its neighbour
