@@ -183,7 +183,8 @@ class MapOptimizer {
   // Folds the sweeps leave where no descent step of one vertex opens them (a tiny face
   // across a sharp crease of the target, an ear's rim): each free corner of a face folded by the
   // remesh's own count or the strict one, in vertex order, tries the target point nearest to the
-  // centroid of its neighbours' images, then the points halfway and a quarter of the way there.
+  // centroid of its neighbours' images, then the points halfway and a quarter of the way there,
+  // then across the far side of each folded face of its ring (move_towards_ring_centroid).
   // A try is taken when it leaves fewer of the corner's faces folded by those two counts
   // together, none more by either or against the optimizer's second reference, and lowers their
   // energy. Passes repeat while one opens a fold, at most kFoldPasses. Returns whether any corner
@@ -244,9 +245,26 @@ class MapOptimizer {
     }
     if (neighbours == 0) return false;
     centroid /= neighbours;
+    // Where to try: towards the centroid, then across the far side of each folded face of the
+    // ring (v mirrored in the line through its other two corners, and three quarters of the way
+    // there), which turns that face over when the centroid lies on the wrong side of it.
+    std::vector<Eigen::Vector3d> tries;
+    for (const double fraction : {1.0, 0.5, 0.25})
+      tries.push_back(positions_[v] + fraction * (centroid - positions_[v]));
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const int f = ring[k].face;
+      if (!face_value(f, references[k], -1, {}).against_own && !strictly_folded(f, -1, {}, {})) continue;
+      const Eigen::Vector3d& a = positions_[faces_[f][(ring[k].corner + 1) % 3]];
+      const Eigen::Vector3d& b = positions_[faces_[f][(ring[k].corner + 2) % 3]];
+      const Eigen::Vector3d along = b - a;
+      if (!(along.squaredNorm() > 0.0)) continue;
+      const Eigen::Vector3d foot = a + (positions_[v] - a).dot(along) / along.squaredNorm() * along;
+      for (const double fraction : {2.0, 1.5})
+        tries.push_back(positions_[v] + fraction * (foot - positions_[v]));
+    }
     std::vector<FaceReferences> moved(ring.size());
-    for (const double fraction : {1.0, 0.5, 0.25}) {
-      const SurfacePoint there = on_target.closest(positions_[v] + fraction * (centroid - positions_[v])).location;
+    for (const Eigen::Vector3d& goal : tries) {
+      const SurfacePoint there = on_target.closest(goal).location;
       const Eigen::Vector3d y = position(target_, there);
       if (!within_slack(v, y)) continue;
       const Eigen::Vector3d there_normal = reference_.interpolated_normal(there);

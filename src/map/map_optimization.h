@@ -38,8 +38,11 @@
 ///
 /// A fold the sweeps leave (a tiny face across a sharp crease of the target, where no descent
 /// step of one vertex opens it) is then opened where it can be: a corner moves to the target
-/// point nearest its neighbours' centroid, or part of the way, when that leaves its faces folded
-/// less (the remesh's own count and the strict one), no more by either, and lowers their energy.
+/// point nearest its neighbours' centroid, or part of the way, or across the far side of a folded
+/// face of its ring (mirrored in the line through the face's other two corners, which turns the
+/// face over where the centroid lies on its wrong side: a fold with an anchor for a corner), when
+/// that leaves its faces folded less (the remesh's own count and the strict one), no more by
+/// either, and lowers their energy.
 
 #include "core/mesh.h"
 #include "core/surface_point.h"
