@@ -166,6 +166,7 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
   options["second_layout"] = settings.retry_keeping_corners;
   options["tip_anchors"] = settings.tip_anchors;
   options["extremity_anchors"] = settings.extremity_anchors;
+  options["tip_rounds"] = settings.tip_rounds;
   options["untangle"] = settings.untangle;
   options["release_anchors"] = settings.max_released_anchors;
   options["optimize_map"] = settings.optimize_map;
@@ -193,6 +194,7 @@ std::string implied_options_json() {
   before.retry_keeping_corners = false;
   before.tip_anchors = false;
   before.extremity_anchors = false;
+  before.tip_rounds = 1;
   before.untangle = false;
   before.max_released_anchors = 0;
   before.optimize_map = false;

@@ -52,6 +52,12 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "through the first map, and map again through them as helper anchors; keep that map when it is "
       "less stretched and folds no more (default on; one more whole map, counted against --max-maps)");
   command
+      .add_option("--tip-rounds", settings.tip_rounds,
+                  "Rounds of those tips: each later round matches tips through the last round's map "
+                  "(a thumb the first map squeezed into the palm) and maps again through them too, while "
+                  "--max-maps allows (default 2; 1: the first map's tips only)")
+      ->check(CLI::Range(1, 10));
+  command
       .add_option(
           "--release-anchors", settings.max_released_anchors,
           "For scans whose landmarks disagree with the template's: when the remesh still folds, map "

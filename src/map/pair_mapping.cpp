@@ -540,6 +540,8 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
   PairSettings settings = in.settings;
   const double slack = kTipSlack * in.settings.tip_reach * std::sqrt(surface_area(in.target));
   for (const ExtremityAnchor& tip : tips) settings.anchor_slack_by_name[tip.specs[0].name] = slack;
+  for (const ExtremityAnchor& tip : current.map.extremity_anchors)  // an earlier round's
+    settings.anchor_slack_by_name[tip.specs[0].name] = slack;
   std::optional<PairMapping> trial = map_if_possible(in.source, tipped.source_anchors, in.target,
                                                      tipped.target_anchors, in.curves, settings, in.budget,
                                                      in.on_stage);
@@ -547,7 +549,8 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
   seconds.add_stages(trial->seconds);
   if (!better_with_tips(*trial, current.map)) return std::nullopt;
   tipped.map = std::move(*trial);
-  tipped.map.extremity_anchors = std::move(tips);
+  tipped.map.extremity_anchors = current.map.extremity_anchors;
+  tipped.map.extremity_anchors.insert(tipped.map.extremity_anchors.end(), tips.begin(), tips.end());
   return tipped;
 }
 
@@ -699,7 +702,14 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   }
   if (settings.extremity_anchors) {
     budget.left += kept_back;
-    if (std::optional<AnchoredMap> tipped = with_extremity_anchors(in, best ? *best : plain, seconds)) {
+    std::optional<AnchoredMap> tipped;
+    for (int round = 0; round < settings.tip_rounds; ++round) {
+      const AnchoredMap& last = tipped ? *tipped : best ? *best : plain;
+      std::optional<AnchoredMap> next = with_extremity_anchors(in, last, seconds);
+      if (!next) break;
+      tipped = std::move(next);
+    }
+    if (tipped) {
       tipped->map.tip_anchors = (best ? best->map : plain.map).tip_anchors;
       tipped->map.released_anchors = (best ? best->map : plain.map).released_anchors;
       best = std::move(tipped);

@@ -54,6 +54,10 @@ struct PairSettings {
   /// landmarks) matched through the first map (map/extremity_anchors.h), and keep that map when
   /// it is less stretched without folding more (map_pair).
   bool extremity_anchors = true;
+  /// Rounds of those tips: each later round matches tips through the map of the round before and
+  /// maps again through them too, when the pair has maps left (a thumb the first map squeezed
+  /// into the palm is matched through the map whose fingers the first round pulled out).
+  int tip_rounds = 2;
   /// A protrusion tip ends a protrusion at least half this long and is the farthest point within
   /// this distance; fraction of sqrt(area) of each mesh (3.4 cm on an adult body).
   double tip_reach = 0.025;

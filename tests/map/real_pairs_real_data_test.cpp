@@ -293,6 +293,37 @@ TEST(ShrecHuman, TheWristsCellPullsTheSqueezedHandOut) {
             test::distance_to_truth(squeezed, target.mesh, truth).mean);
 }
 
+// SHREC'19 shape 18 with the 29 anthropometric landmarks: the first round of tips pulls the left
+// hand's fingers out of the wrist but not its thumb, which the map through them squeezes into
+// the palm (two spirals of small faces, looked at) and leaves the target's thumb uncovered; a
+// second round matches the thumb through that map and maps again through it too. Measured:
+// target vertices farther than the coverage gap from the remesh 21 -> 2, the largest gap 1.8 ->
+// 1.1% of sqrt(area), E_L2 1.060 -> 1.047; the left hand's mean distance to the truth stays
+// about 3 cm (3.03 -> 3.08), so it is not asserted.
+TEST(ShrecHuman, ASecondRoundOfTipsFindsTheThumb) {
+  const std::filesystem::path data = test::shared_data_dir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
+  const ShrecPair shrec = load_shrec_pair(data, "18", "smpl_anthropometry_landmark_indices.json");
+  const auto& [source, target, truth, source_anchors, target_anchors] = shrec;
+  PairSettings two_rounds;
+  two_rounds.max_maps = 3;  // the first map and one per round
+  PairSettings one_round = two_rounds;
+  one_round.tip_rounds = 1;
+  const PairMapping first = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {}, one_round);
+  const PairMapping second = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {}, two_rounds);
+  constexpr double kLeft = 1.0;
+  std::cout << "left hand " << hand_error(shrec, first, kLeft) << " -> " << hand_error(shrec, second, kLeft)
+            << " m, E_L2 " << first.distortion.all.e_l2 << " -> " << second.distortion.all.e_l2 << ", tips "
+            << first.extremity_anchors.size() << " -> " << second.extremity_anchors.size() << ", max gap "
+            << first.coverage.max_gap << " -> " << second.coverage.max_gap << ", uncovered "
+            << first.coverage.uncovered_vertices << " -> " << second.coverage.uncovered_vertices << "\n";
+  EXPECT_GT(second.extremity_anchors.size(), first.extremity_anchors.size());
+  EXPECT_LT(second.coverage.uncovered_vertices, first.coverage.uncovered_vertices / 2);
+  EXPECT_LT(second.coverage.max_gap, first.coverage.max_gap);
+  EXPECT_LT(second.distortion.all.e_l2, first.distortion.all.e_l2);
+  EXPECT_EQ(second.quality.strictly_folded_faces, 0);
+}
+
 // SHREC'19 shape 41 (FAUST tr_reg_068) with the 29 anthropometric landmarks: the first map
 // matches the thumb of the raised right hand but squeezes its four fingers into the palm, which
 // long flat triangles then cover (E_L2 1.10). Their tips are matched by their distances to the
