@@ -97,8 +97,8 @@ void stretch_side(Layout& layout, int side, int e, const std::array<int, 2>& pat
       }
     }
     // The thin faces at avoided vertices stay in the region: remember them before insertion
-    // grows the free mask (insertion only splits free faces, so they keep their handles).
-    // The region: its faces at the start and the pieces clearance split off them.
+    // grows the free mask (insertion only splits free faces, so they keep their handles). They
+    // are among the region's faces at the start and the pieces clearance split off them.
     std::vector<FaceHandle> thin;
     const auto keep_if_thin = [&](int f) {
       if (masks.region[f] && !masks.free[f]) thin.emplace_back(f);

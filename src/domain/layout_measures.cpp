@@ -11,6 +11,14 @@
 namespace xparam {
 namespace {
 
+double face_area(const Mesh& mesh, FaceHandle f) {
+  auto v = mesh.cfv_iter(f);
+  const Eigen::Vector3d p0 = position(mesh, *v);
+  const Eigen::Vector3d p1 = position(mesh, *++v);
+  const Eigen::Vector3d p2 = position(mesh, *++v);
+  return 0.5 * (p1 - p0).cross(p2 - p0).norm();
+}
+
 // The edge of `patch` that joins anchors x and y (there is exactly one: a triangle's sides
 // join distinct anchor pairs).
 int patch_edge_between(const Layout& layout, int patch, int x, int y) {
@@ -49,18 +57,6 @@ std::vector<double> curve_lengths(const Layout& layout, int side) {
   for (std::size_t e = 0; e < lengths.size(); ++e) lengths[e] = curve_length(layout, side, static_cast<int>(e));
   return lengths;
 }
-
-namespace {
-
-double face_area(const Mesh& mesh, FaceHandle f) {
-  auto v = mesh.cfv_iter(f);
-  const Eigen::Vector3d p0 = position(mesh, *v);
-  const Eigen::Vector3d p1 = position(mesh, *++v);
-  const Eigen::Vector3d p2 = position(mesh, *++v);
-  return 0.5 * (p1 - p0).cross(p2 - p0).norm();
-}
-
-}  // namespace
 
 std::vector<double> patch_areas(const Layout& layout, int side) {
   const Mesh& mesh = layout.sides[side].mesh;
