@@ -1,17 +1,15 @@
 #include "map/map_optimization.h"
 
-#include "core/closest_point.h"
 #include "core/errors.h"
 #include "core/stopwatch.h"
 #include "core/surface_walk.h"
 #include "map/foldover_free_energy.h"
+#include "map/map_optimizer.h"
 #include "map/remesh_coverage.h"
-#include "map/remesh_quality.h"
 
+#include <tbb/parallel_for.h>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
-#include <Eigen/Geometry>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,45 +17,16 @@
 #include <string>
 
 namespace xparam {
+namespace map_optimizer {
 namespace {
-
-// An orthonormal frame of the plane normal to `normal`, right-handed with it.
-struct PlaneFrame {
-  Eigen::Vector3d u = Eigen::Vector3d::Zero();
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  bool valid = false;
-  bool against_own = false;      // chord_edges: the triangle does not face along FaceReferences::own
-  bool against_corners = false;  // nor along FaceReferences::corners
-};
-
-PlaneFrame plane_frame(const Eigen::Vector3d& normal) {
-  PlaneFrame frame;
-  const double length = normal.norm();
-  if (!(length > 0.0) || !std::isfinite(length)) return frame;
-  const Eigen::Vector3d n = normal / length;
-  const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  frame.u = n.cross(helper).normalized();
-  frame.v = n.cross(frame.u);
-  frame.valid = true;
-  return frame;
-}
-
-// The directions a remesh face's image must face: the remesh's reference normal (its own fold
-// count, map/remesh_quality.h) and the sum of the normals of the target faces under its
-// corners (only a face facing away from that sum can be folded by the strict count,
-// RemeshQualityResult::strictly_folded_faces).
-struct FaceReferences {
-  Eigen::Vector3d own = Eigen::Vector3d::Zero();
-  Eigen::Vector3d corners = Eigen::Vector3d::Zero();
-};
 
 // The edge matrix [x1 - x0, x2 - x0] of a chord triangle in a frame of its own plane: its true
 // shape, oriented positively when it faces along both references and negatively (folded)
 // otherwise; the frame is invalid when it is collapsed or edge-on to either. The energy depends
 // on the shape alone, so its gradient lies in the triangle's plane: the frame can be held while
 // differentiating.
-Eigen::Matrix2d chord_edges(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2, const FaceReferences& references,
-                            PlaneFrame& frame) {
+Eigen::Matrix2d chord_edges(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2,
+                            const FaceReferences& references, PlaneFrame& frame) {
   const Eigen::Vector3d normal = e1.cross(e2);
   const double own = normal.dot(references.own);
   const double corners = normal.dot(references.corners);
@@ -73,575 +42,482 @@ Eigen::Matrix2d chord_edges(const Eigen::Vector3d& e1, const Eigen::Vector3d& e2
   return edges;
 }
 
-// A template face where a vertex sits: the face and the vertex's corner in it.
-struct Incidence {
-  int face = 0;
-  int corner = 0;
-};
-
-// An uncovered target vertex pulling the remesh point nearest to it (on one remesh face, at
-// fixed barycentrics until the next refresh) towards itself.
-struct CoveragePull {
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // the target vertex
-  Eigen::Vector3d bary = Eigen::Vector3d::Zero();   // on the remesh face, faces_ corner order
-  double weight = 0.0;                              // coverage_weight times its share of the target's area
-};
-
-// A folded face's energy (per unit weight): finite, so a folded face
-// neither freezes its vertices nor hides the rest of its ring's energy, and far above any
-// unfolded face's, so opening it pays and folding one never does.
-constexpr double kFoldedFaceEnergy = 1e6;
-
 // The sweeps go on while a sweep lowers the coverage energy by this fraction of it.
 constexpr double kCoverageTolerance = 0.01;
 
-// Passes of open_remaining_folds, at most.
-constexpr int kFoldPasses = 3;
+// Rounds of opening folds after the sweeps, each followed by at most kSweepsAfterOpening sweeps
+// (and no more than MapOptimizationSettings::max_sweeps) about the corners moved.
+constexpr int kOpeningRounds = 3;
+constexpr int kSweepsAfterOpening = 10;
 
-class MapOptimizer {
- public:
-  MapOptimizer(const Mesh& source, const std::vector<std::array<int, 3>>& faces, const Mesh& target,
-               std::vector<SurfacePoint> locations, const std::vector<PinnedVertex>& pinned,
-               const MapOptimizationSettings& settings)
-      : faces_(faces), target_(target), reference_(target), settings_(settings), locations_(std::move(locations)) {
-    const int n_vertices = static_cast<int>(locations_.size());
-    positions_.resize(n_vertices);
-    normals_.resize(n_vertices);
-    for (int v = 0; v < n_vertices; ++v) {
-      positions_[v] = position(target, locations_[v]);
-      normals_[v] = reference_.interpolated_normal(locations_[v]);
-    }
-    measure_template(source);
-    incidences_.resize(n_vertices);
-    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
-      for (int c = 0; c < 3; ++c) incidences_[faces_[f][c]].push_back({f, c});
-    }
-    pin_index_.assign(n_vertices, -1);
-    for (std::size_t k = 0; k < pinned.size(); ++k) pin_index_[pinned[k].vertex] = static_cast<int>(k);
-    pinned_ = pinned;
-    colour_free_vertices();
-    moved_.assign(n_vertices, 1);
-    measure_target_areas();
+}  // namespace
+
+MapOptimizer::MapOptimizer(const Mesh& source, const std::vector<std::array<int, 3>>& faces,
+                           const Mesh& target, std::vector<SurfacePoint> locations,
+                           const std::vector<PinnedVertex>& pinned, const MapOptimizationSettings& settings)
+    : faces_(faces),
+      target_(target),
+      reference_(target),
+      settings_(settings),
+      locations_(std::move(locations)) {
+  const int n_vertices = static_cast<int>(locations_.size());
+  positions_.resize(n_vertices);
+  normals_.resize(n_vertices);
+  for (int v = 0; v < n_vertices; ++v) {
+    positions_[v] = position(target, locations_[v]);
+    normals_[v] = reference_.interpolated_normal(locations_[v]);
   }
+  measure_template(source);
+  incidences_.resize(n_vertices);
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+    for (int c = 0; c < 3; ++c) incidences_[faces_[f][c]].push_back({f, c});
+  }
+  pin_index_.assign(n_vertices, -1);
+  for (std::size_t k = 0; k < pinned.size(); ++k) pin_index_[pinned[k].vertex] = static_cast<int>(k);
+  pinned_ = pinned;
+  colour_free_vertices();
+  moved_.assign(n_vertices, 1);
+  measure_target_areas();
+}
 
-  MapOptimizationResult run() {
-    MapOptimizationResult result;
-    result.settings = settings_;
-    const std::vector<SurfacePoint> start = locations_;
-    result.flipped_before = count_folded();
-    result.distortion_before = mean_unfolded_energy();
-    // Lowering the energy, the barrier keeping every unfolded face unfolded and a folded face
-    // changing only by opening. The energy is
-    // measured again after each refresh of the coverage pulls: the recorded energy never rises
-    // between refreshes.
-    refresh_coverage();
-    double energy = total_energy();
+MapOptimizationResult MapOptimizer::run() {
+  MapOptimizationResult result;
+  result.settings = settings_;
+  const std::vector<SurfacePoint> start = locations_;
+  result.flipped_before = count_folded();
+  result.distortion_before = mean_unfolded_energy();
+  centre_in_face_anchors();
+  // Lowering the energy, the barrier keeping every unfolded face unfolded and a folded face
+  // changing only by opening. The energy is
+  // measured again after each refresh of the coverage pulls: the recorded energy never rises
+  // between refreshes.
+  refresh_coverage();
+  double energy = total_energy();
+  result.energy.push_back(energy);
+  std::fill(moved_.begin(), moved_.end(), 1);
+  double coverage = total_coverage_energy();
+  for (int since_refresh = 0, sweeps_left = settings_.max_sweeps; sweeps_left > 0; --sweeps_left) {
+    const bool any_moved = sweep();
+    ++result.sweeps;
+    const double was = energy;
+    const double coverage_was = coverage;
+    energy = total_energy();
+    coverage = total_coverage_energy();
     result.energy.push_back(energy);
-    std::fill(moved_.begin(), moved_.end(), 1);
-    double coverage = total_coverage_energy();
-    for (int since_refresh = 0, sweeps_left = settings_.max_sweeps; sweeps_left > 0; --sweeps_left) {
-      const bool any_moved = sweep();
-      ++result.sweeps;
-      const double was = energy;
-      const double coverage_was = coverage;
+    // Converged when the sweep barely lowered the energy and, while the remesh leaves target
+    // vertices out, their pull too (small against the distortion, but what opens a finger).
+    const bool converged = !any_moved || (was - energy <= settings_.tolerance * was &&
+                                          coverage_was - coverage <= kCoverageTolerance * coverage_was);
+    // The pulls are found again every coverage_refresh sweeps, and before stopping: the run
+    // ends only at a sweep right after a refresh that lowered nothing.
+    ++since_refresh;
+    if (settings_.coverage_weight > 0.0 &&
+        (since_refresh >= settings_.coverage_refresh || (converged && since_refresh > 1))) {
+      since_refresh = 0;
+      refresh_coverage();
+      std::fill(moved_.begin(), moved_.end(), 1);
       energy = total_energy();
       coverage = total_coverage_energy();
+      result.refreshed.push_back(static_cast<int>(result.energy.size()));
       result.energy.push_back(energy);
-      // Converged when the sweep barely lowered the energy and, while the remesh leaves target
-      // vertices out, their pull too (small against the distortion, but what opens a finger).
-      const bool converged = !any_moved || (was - energy <= settings_.tolerance * was &&
-                                            coverage_was - coverage <= kCoverageTolerance * coverage_was);
-      // The pulls are found again every coverage_refresh sweeps, and before stopping: the run
-      // ends only at a sweep right after a refresh that lowered nothing.
-      ++since_refresh;
-      if (settings_.coverage_weight > 0.0 &&
-          (since_refresh >= settings_.coverage_refresh || (converged && since_refresh > 1))) {
-        since_refresh = 0;
-        refresh_coverage();
-        std::fill(moved_.begin(), moved_.end(), 1);
-        energy = total_energy();
-        coverage = total_coverage_energy();
-        result.refreshed.push_back(static_cast<int>(result.energy.size()));
-        result.energy.push_back(energy);
-        continue;
-      }
-      if (converged) break;
+      continue;
     }
-    if (open_remaining_folds()) result.energy.push_back(total_energy());
-    result.flipped_after = count_folded();
-    result.distortion_after = mean_unfolded_energy();
-    for (std::size_t v = 0; v < locations_.size(); ++v) {
-      if (locations_[v].face != start[v].face || locations_[v].bary != start[v].bary) ++result.moved_vertices;
+    if (converged) break;
+  }
+  // The sweeps then go on about the corners the openings moved: that relaxes their rings and
+  // can open a face a move left folded (a lay about an anchor opens the anchor's face and may
+  // fold one beside it, which no try of one corner opens).
+  keep_strict_folds_ = true;
+  for (int round = 0; round < kOpeningRounds; ++round) {
+    std::fill(moved_.begin(), moved_.end(), 0);
+    if (!open_remaining_folds()) break;
+    result.energy.push_back(total_energy());
+    for (int sweeps_left = std::min(kSweepsAfterOpening, settings_.max_sweeps); sweeps_left > 0 && sweep();
+         --sweeps_left) {
+      ++result.sweeps;
+      result.energy.push_back(total_energy());
     }
-    for (const PinnedVertex& pin : pinned_) result.anchor_miss.push_back((positions_[pin.vertex] - pin.landmark).norm());
-    result.locations = std::move(locations_);
-    result.positions = std::move(positions_);
-    return result;
   }
+  result.flipped_after = count_folded();
+  result.distortion_after = mean_unfolded_energy();
+  for (std::size_t v = 0; v < locations_.size(); ++v) {
+    if (locations_[v].face != start[v].face || locations_[v].bary != start[v].bary) ++result.moved_vertices;
+  }
+  for (const PinnedVertex& pin : pinned_)
+    result.anchor_miss.push_back((positions_[pin.vertex] - pin.landmark).norm());
+  result.locations = std::move(locations_);
+  result.positions = std::move(positions_);
+  return result;
+}
 
- private:
-  // Folds the sweeps leave where no descent step of one vertex opens them (a tiny face
-  // across a sharp crease of the target, an ear's rim): each free corner of a face folded by the
-  // remesh's own count or the strict one, in vertex order, tries the target point nearest to the
-  // centroid of its neighbours' images, then the points halfway and a quarter of the way there,
-  // then across the far side of each folded face of its ring (move_towards_ring_centroid).
-  // A try is taken when it leaves fewer of the corner's faces folded by those two counts
-  // together, none more by either or against the optimizer's second reference, and lowers their
-  // energy. Passes repeat while one opens a fold, at most kFoldPasses. Returns whether any corner
-  // moved.
-  bool open_remaining_folds() {
-    std::optional<ClosestPointIndex> on_target;
-    bool any = false;
-    for (int pass = 0; pass < kFoldPasses; ++pass) {
-      std::vector<int> corners;
-      for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
-        if (!face_value(f, reference_normal(f), -1, {}).against_own && !strictly_folded(f, -1, {}, {})) continue;
-        for (int v : faces_[f])
-          if (is_free(v)) corners.push_back(v);
-      }
-      std::sort(corners.begin(), corners.end());
-      corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-      if (corners.empty()) break;
-      if (!on_target) on_target.emplace(target_);
-      bool opened = false;
-      for (int v : corners) opened = move_towards_ring_centroid(v, *on_target) || opened;
-      if (!opened) break;
-      any = true;
+// Whether face f is folded by the strict count (RemeshQualityResult::strictly_folded_faces) or
+// collapsed, with `moved` (if >= 0) at `at`, `at_position` in 3-D.
+bool MapOptimizer::strictly_folded(int f, int moved, const SurfacePoint& at,
+                                   const Eigen::Vector3d& at_position) const {
+  const auto& t = faces_[f];
+  const auto location = [&](int v) -> const SurfacePoint* { return v == moved ? &at : &locations_[v]; };
+  const auto point = [&](int v) -> const Eigen::Vector3d& {
+    return v == moved ? at_position : positions_[v];
+  };
+  const Eigen::Vector3d normal = (point(t[1]) - point(t[0])).cross(point(t[2]) - point(t[0]));
+  return !(normal.squaredNorm() > 0.0) ||
+         reference_.opposes_every_corner(normal, {location(t[0]), location(t[1]), location(t[2])});
+}
+
+// One sweep over the free vertices that may move (they or a neighbour moved in the last
+// sweep), a colour at a time. Returns whether any vertex moved.
+bool MapOptimizer::sweep() {
+  std::vector<char> active(moved_.size(), 0);
+  for (std::size_t v = 0; v < moved_.size(); ++v) {
+    if (!moved_[v]) continue;
+    active[v] = 1;
+    for (const Incidence& in : incidences_[v]) {
+      for (int u : faces_[in.face]) active[u] = 1;
     }
-    return any;
   }
-
-  // Whether face f is folded by the strict count (RemeshQualityResult::strictly_folded_faces) or
-  // collapsed, with `moved` (if >= 0) at `at`, `at_position` in 3-D.
-  bool strictly_folded(int f, int moved, const SurfacePoint& at, const Eigen::Vector3d& at_position) const {
-    const auto& t = faces_[f];
-    const auto location = [&](int v) -> const SurfacePoint* { return v == moved ? &at : &locations_[v]; };
-    const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at_position : positions_[v]; };
-    const Eigen::Vector3d normal = (point(t[1]) - point(t[0])).cross(point(t[2]) - point(t[0]));
-    return !(normal.squaredNorm() > 0.0) ||
-           reference_.opposes_every_corner(normal, {location(t[0]), location(t[1]), location(t[2])});
+  std::fill(moved_.begin(), moved_.end(), 0);
+  for (const std::vector<int>& colour : colours_) {
+    tbb::parallel_for(0, static_cast<int>(colour.size()), [&](int k) {
+      if (active[colour[k]]) moved_[colour[k]] = move_vertex(colour[k]);
+    });
   }
+  return std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
+}
 
-  // One try of open_remaining_folds for vertex v.
-  bool move_towards_ring_centroid(int v, const ClosestPointIndex& on_target) {
-    const std::vector<Incidence>& ring = incidences_[v];
-    std::vector<FaceReferences> references(ring.size());
-    for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face);
-    const FaceValue before = ring_value(v, references, positions_[v]);
-    const auto strict_in_ring = [&](const SurfacePoint& at, const Eigen::Vector3d& at_position) {
-      int folded = 0;
-      for (const Incidence& in : ring) folded += strictly_folded(in.face, v, at, at_position);
-      return folded;
-    };
-    const int strict_before = strict_in_ring(locations_[v], positions_[v]);
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    int neighbours = 0;
-    for (const Incidence& in : ring) {
+// Rest shapes: each template face's inverse edge matrix in a frame of its own plane, divided
+// by the template-to-target scale, and its share of the template's area.
+void MapOptimizer::measure_template(const Mesh& source) {
+  const int n_faces = static_cast<int>(faces_.size());
+  rest_inverse_.resize(n_faces);
+  weight_.resize(n_faces);
+  for (VertexHandle v : source.vertices()) template_positions_.push_back(position(source, v));
+  double template_area = 0.0;
+  for (int f = 0; f < n_faces; ++f) {
+    const Eigen::Vector3d a = position(source, source.vertex_handle(faces_[f][0]));
+    const Eigen::Vector3d e1 = position(source, source.vertex_handle(faces_[f][1])) - a;
+    const Eigen::Vector3d e2 = position(source, source.vertex_handle(faces_[f][2])) - a;
+    const Eigen::Vector3d normal = e1.cross(e2);
+    weight_[f] = 0.5 * normal.norm();
+    template_area += weight_[f];
+    const Eigen::Vector3d u = e1.normalized();
+    const Eigen::Vector3d w = normal.normalized().cross(u);
+    Eigen::Matrix2d edges;
+    edges << e1.dot(u), e2.dot(u), e1.dot(w), e2.dot(w);
+    rest_inverse_[f] = edges.inverse();
+  }
+  const double scale = std::sqrt(reference_.target_area() / template_area);
+  template_scale_ = scale;
+  for (int f = 0; f < n_faces; ++f) {
+    rest_inverse_[f] /= scale;
+    weight_[f] /= template_area;
+  }
+}
+
+// Greedy colouring of the free vertices in index order: no two of a colour share a face.
+void MapOptimizer::colour_free_vertices() {
+  const int n_vertices = static_cast<int>(locations_.size());
+  std::vector<int> colour(n_vertices, -1);
+  std::vector<int> seen_by;  // colour -> last vertex that saw it among its neighbours
+  for (int v = 0; v < n_vertices; ++v) {
+    if (!is_free(v)) continue;
+    for (const Incidence& in : incidences_[v]) {
       for (int u : faces_[in.face]) {
-        if (u == v) continue;
-        centroid += positions_[u];
-        ++neighbours;
+        if (u == v || colour[u] < 0) continue;
+        if (colour[u] >= static_cast<int>(seen_by.size())) seen_by.resize(colour[u] + 1, -1);
+        seen_by[colour[u]] = v;
       }
     }
-    if (neighbours == 0) return false;
-    centroid /= neighbours;
-    // Where to try: towards the centroid, then across the far side of each folded face of the
-    // ring (v mirrored in the line through its other two corners, and three quarters of the way
-    // there), which turns that face over when the centroid lies on the wrong side of it.
-    std::vector<Eigen::Vector3d> tries;
-    for (const double fraction : {1.0, 0.5, 0.25})
-      tries.push_back(positions_[v] + fraction * (centroid - positions_[v]));
-    for (std::size_t k = 0; k < ring.size(); ++k) {
-      const int f = ring[k].face;
-      if (!face_value(f, references[k], -1, {}).against_own && !strictly_folded(f, -1, {}, {})) continue;
-      const Eigen::Vector3d& a = positions_[faces_[f][(ring[k].corner + 1) % 3]];
-      const Eigen::Vector3d& b = positions_[faces_[f][(ring[k].corner + 2) % 3]];
-      const Eigen::Vector3d along = b - a;
-      if (!(along.squaredNorm() > 0.0)) continue;
-      const Eigen::Vector3d foot = a + (positions_[v] - a).dot(along) / along.squaredNorm() * along;
-      for (const double fraction : {2.0, 1.5})
-        tries.push_back(positions_[v] + fraction * (foot - positions_[v]));
+    int c = 0;
+    while (c < static_cast<int>(seen_by.size()) && seen_by[c] == v) ++c;
+    colour[v] = c;
+    if (c >= static_cast<int>(colours_.size())) colours_.resize(c + 1);
+    colours_[c].push_back(v);
+  }
+}
+
+// The face's references at the current images, with `moved` (if >= 0) at `at`, where the
+// target's interpolated normal is `at_normal`.
+FaceReferences MapOptimizer::reference_normal(int f, int moved, const SurfacePoint& at,
+                                              const Eigen::Vector3d& at_normal) const {
+  const auto& t = faces_[f];
+  const auto location = [&](int v) -> const SurfacePoint* { return v == moved ? &at : &locations_[v]; };
+  const auto normal = [&](int v) -> const Eigen::Vector3d* { return v == moved ? &at_normal : &normals_[v]; };
+  const std::array<const SurfacePoint*, 3> corners = {location(t[0]), location(t[1]), location(t[2])};
+  // On one target face both references are that face's normal (RemeshQualityResult).
+  const int shared = reference_.shared_face(corners);
+  if (shared >= 0) return {reference_.face_normal(shared), reference_.face_normal(shared)};
+  return {*normal(t[0]) + *normal(t[1]) + *normal(t[2]), reference_.face_normal(corners[0]->face) +
+                                                             reference_.face_normal(corners[1]->face) +
+                                                             reference_.face_normal(corners[2]->face)};
+}
+
+// The Jacobian of face f's map (see chord_edges), with `moved` (if >= 0) at `at`; `frame`
+// receives the image's frame (invalid when the image is collapsed or edge-on).
+Eigen::Matrix2d MapOptimizer::jacobian(int f, const FaceReferences& reference, int moved,
+                                       const Eigen::Vector3d& at, PlaneFrame& frame) const {
+  const auto& t = faces_[f];
+  const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
+  return chord_edges(point(t[1]) - point(t[0]), point(t[2]) - point(t[0]), reference, frame) *
+         rest_inverse_[f];
+}
+
+// Face f is folded for the optimizer when its image is folded, collapsed or edge-on against
+// either reference (chord_edges).
+MapOptimizer::FaceValue MapOptimizer::face_value(int f, const FaceReferences& reference, int moved,
+                                                 const Eigen::Vector3d& at) const {
+  PlaneFrame frame;
+  const Eigen::Matrix2d j = jacobian(f, reference, moved, at, frame);
+  FaceValue value;
+  value.folded = !frame.valid || !(j.determinant() > 0.0);
+  value.against_own = frame.against_own || !frame.valid;
+  value.against_corners = frame.against_corners || !frame.valid;
+  value.energy =
+      weight_[f] * (value.folded ? kFoldedFaceEnergy : foldover_free_energy(j, settings_.area_weight));
+  value.energy += coverage_energy(f, moved, at);
+  return value;
+}
+
+double MapOptimizer::total_coverage_energy() const {
+  double sum = 0.0;
+  for (int f = 0; f < static_cast<int>(pulls_.size()); ++f) sum += coverage_energy(f, -1, {});
+  return sum;
+}
+
+// The coverage pulls on face f, with `moved` (if >= 0) at `at`.
+double MapOptimizer::coverage_energy(int f, int moved, const Eigen::Vector3d& at) const {
+  if (pulls_.empty() || pulls_[f].empty()) return 0.0;
+  const auto& t = faces_[f];
+  const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
+  double energy = 0.0;
+  for (const CoveragePull& pull : pulls_[f]) {
+    const Eigen::Vector3d nearest =
+        pull.bary[0] * point(t[0]) + pull.bary[1] * point(t[1]) + pull.bary[2] * point(t[2]);
+    const double excess = std::max((pull.point - nearest).norm() - coverage_margin_, 0.0) / coverage_margin_;
+    energy += pull.weight * excess * excess;
+  }
+  return energy;
+}
+
+// d(coverage energy of face f)/d(position of its corner `corner`), `moved` at `at`.
+Eigen::Vector3d MapOptimizer::coverage_gradient(int f, int corner, int moved,
+                                                const Eigen::Vector3d& at) const {
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+  if (pulls_.empty() || pulls_[f].empty()) return gradient;
+  const auto& t = faces_[f];
+  const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
+  for (const CoveragePull& pull : pulls_[f]) {
+    const Eigen::Vector3d nearest =
+        pull.bary[0] * point(t[0]) + pull.bary[1] * point(t[1]) + pull.bary[2] * point(t[2]);
+    const Eigen::Vector3d away = pull.point - nearest;
+    const double gap = away.norm();
+    if (!(gap > coverage_margin_)) continue;
+    const double excess = (gap - coverage_margin_) / coverage_margin_;
+    gradient -= pull.weight * 2.0 * excess / coverage_margin_ * pull.bary[corner] * away / gap;
+  }
+  return gradient;
+}
+
+// Each target vertex's share of the target's area, and the coverage margin.
+void MapOptimizer::measure_target_areas() {
+  const double area = reference_.target_area();
+  target_vertex_share_ = vertex_areas(target_);
+  for (double& share : target_vertex_share_) share /= area;
+  coverage_margin_ = 0.5 * kUncoveredGap * std::sqrt(area);
+}
+
+// Finds, for every target vertex farther than the margin from the remesh, the remesh point
+// nearest to it.
+void MapOptimizer::refresh_coverage() {
+  pulls_.clear();
+  if (!(settings_.coverage_weight > 0.0)) return;
+  pulls_.resize(faces_.size());
+  const ClosestPointIndex remesh(positions_, faces_);
+  const int n_target = static_cast<int>(target_.n_vertices());
+  std::vector<ClosestPoint> nearest(n_target);
+  tbb::parallel_for(0, n_target,
+                    [&](int v) { nearest[v] = remesh.closest(position(target_, target_.vertex_handle(v))); });
+  for (int v = 0; v < n_target; ++v) {
+    if (!(nearest[v].distance > coverage_margin_)) continue;
+    pulls_[nearest[v].location.face].push_back({position(target_, target_.vertex_handle(v)),
+                                                nearest[v].location.bary,
+                                                settings_.coverage_weight * target_vertex_share_[v]});
+  }
+}
+
+double MapOptimizer::total_energy() const {
+  std::vector<double> energies(faces_.size());
+  tbb::parallel_for(0, static_cast<int>(faces_.size()),
+                    [&](int f) { energies[f] = face_value(f, reference_normal(f), -1, {}).energy; });
+  double sum = 0.0;
+  for (double e : energies) sum += e;  // in face order: the same at any thread count
+  return sum;
+}
+
+// The energy per template area over the faces that do not fold.
+double MapOptimizer::mean_unfolded_energy() const {
+  double energy = 0.0;
+  double weight = 0.0;
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+    PlaneFrame frame;
+    const FaceReferences reference = reference_normal(f);
+    if (face_value(f, reference, -1, {}).folded) continue;
+    const Eigen::Matrix2d j = jacobian(f, reference, -1, {}, frame);
+    energy += weight_[f] * foldover_free_energy(j, settings_.area_weight);
+    weight += weight_[f];
+  }
+  return weight > 0.0 ? energy / weight : 0.0;
+}
+
+int MapOptimizer::count_folded() const {
+  int folded = 0;
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f)
+    folded += face_value(f, reference_normal(f), -1, {}).folded;
+  return folded;
+}
+
+// Energy of v's faces with v's image at `at` (`references` the faces' references there), and
+// how many are folded against each reference (`folded` unset).
+MapOptimizer::FaceValue MapOptimizer::ring_value(int v, const std::vector<FaceReferences>& references,
+                                                 const Eigen::Vector3d& at) const {
+  FaceValue ring;
+  for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
+    const FaceValue value = face_value(incidences_[v][k].face, references[k], v, at);
+    ring.energy += value.energy;
+    ring.against_own += value.against_own;
+    ring.against_corners += value.against_corners;
+  }
+  return ring;
+}
+
+// d(ring energy)/d(v's image) in 3-D, the reference normals held; folded faces contribute
+// nothing (their energy is constant).
+Eigen::Vector3d MapOptimizer::ring_gradient(int v, const std::vector<FaceReferences>& references,
+                                            const Eigen::Vector3d& at) const {
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
+    const Incidence& in = incidences_[v][k];
+    gradient += coverage_gradient(in.face, in.corner, v, at);
+    PlaneFrame frame;
+    const Eigen::Matrix2d j = jacobian(in.face, references[k], v, at, frame);
+    if (!frame.valid || !(j.determinant() > 0.0)) continue;
+    // J = [x1 - x0, x2 - x0] R: dE/d(edge matrix) = dE/dJ R^T.
+    const Eigen::Matrix2d by_edges = weight_[in.face] *
+                                     foldover_free_energy_gradient(j, settings_.area_weight) *
+                                     rest_inverse_[in.face].transpose();
+    const Eigen::Vector2d by_point = in.corner == 0 ? Eigen::Vector2d(-by_edges.col(0) - by_edges.col(1))
+                                                    : Eigen::Vector2d(by_edges.col(in.corner - 1));
+    gradient += by_point.x() * frame.u + by_point.y() * frame.v;
+  }
+  return gradient;
+}
+
+bool MapOptimizer::within_slack(int v, const Eigen::Vector3d& at) const {
+  const int pin = pin_index_[v];
+  return pin < 0 || (at - pinned_[pin].landmark).norm() <= pinned_[pin].slack;
+}
+
+// One Newton step of v's image in the plane of its target face, walked on the surface, with
+// backtracking until its faces' energy falls and no more of them fold. Returns whether the
+// image moved.
+bool MapOptimizer::move_vertex(int v) {
+  const std::vector<Incidence>& ring = incidences_[v];
+  if (ring.empty()) return false;
+  const SurfacePoint& here = locations_[v];
+  const Eigen::Vector3d x = positions_[v];
+  std::vector<FaceReferences> references(ring.size());
+  for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face);
+  const FaceValue ring_before = ring_value(v, references, x);
+  const double before = ring_before.energy;
+  if (!std::isfinite(before)) return false;
+  // Strictly folded faces are among those folded against their corners' target faces.
+  const auto strict_in_ring = [&](int moved, const SurfacePoint& at, const Eigen::Vector3d& at_position) {
+    int folded = 0;
+    for (const Incidence& in : ring) folded += strictly_folded(in.face, moved, at, at_position);
+    return folded;
+  };
+  const int strict_before =
+      keep_strict_folds_ && ring_before.against_corners > 0 ? strict_in_ring(-1, {}, {}) : 0;
+
+  // The tangent plane: the target face under the image.
+  const PlaneFrame tangent = plane_frame(reference_.face_normal(here.face));
+  if (!tangent.valid) return false;
+  // The step's scale: the mean length of v's edges (the shortest can be near 0 while a
+  // collapsed face opens again).
+  double edge_sum = 0.0;
+  int edge_count = 0;
+  for (const Incidence& in : ring) {
+    for (int u : faces_[in.face]) {
+      if (u == v) continue;
+      edge_sum += (positions_[u] - x).norm();
+      ++edge_count;
     }
-    std::vector<FaceReferences> moved(ring.size());
-    for (const Eigen::Vector3d& goal : tries) {
-      const SurfacePoint there = on_target.closest(goal).location;
-      const Eigen::Vector3d y = position(target_, there);
-      if (!within_slack(v, y)) continue;
-      const Eigen::Vector3d there_normal = reference_.interpolated_normal(there);
-      for (std::size_t k = 0; k < ring.size(); ++k) moved[k] = reference_normal(ring[k].face, v, there, there_normal);
-      const FaceValue after = ring_value(v, moved, y);
-      const int strict_after = strict_in_ring(there, y);
-      if (after.against_own > before.against_own || after.against_corners > before.against_corners ||
-          strict_after > strict_before ||
-          after.against_own + strict_after >= before.against_own + strict_before || !(after.energy < before.energy))
-        continue;
-      locations_[v] = there;
+  }
+  const double mean_edge = edge_sum / edge_count;
+  if (!(mean_edge > 0.0)) return false;
+  const auto in_plane = [&](const Eigen::Vector3d& g) {
+    return Eigen::Vector2d(g.dot(tangent.u), g.dot(tangent.v));
+  };
+  const Eigen::Vector2d gradient = in_plane(ring_gradient(v, references, x));
+  if (!gradient.allFinite() || gradient.norm() == 0.0) return false;
+
+  // Finite-difference Hessian of the analytic gradient, made positive definite.
+  const double h = 1e-4 * mean_edge;
+  Eigen::Matrix2d hessian;
+  hessian.col(0) = (in_plane(ring_gradient(v, references, x + h * tangent.u)) - gradient) / h;
+  hessian.col(1) = (in_plane(ring_gradient(v, references, x + h * tangent.v)) - gradient) / h;
+  hessian = 0.5 * (hessian + hessian.transpose()).eval();
+  Eigen::Vector2d direction = -gradient;
+  if (hessian.allFinite()) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(hessian);
+    Eigen::Vector2d values = eigen.eigenvalues();
+    const double floor = std::max(1e-8 * std::abs(values.maxCoeff()), 1e-300);
+    values = values.cwiseMax(floor);
+    direction =
+        -(eigen.eigenvectors() * values.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose()) *
+        gradient;
+  }
+  // Never farther than half an edge in one step: the step stays near the ring.
+  const double length = direction.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return false;
+  if (length > 0.5 * mean_edge) direction *= 0.5 * mean_edge / length;
+  const double slope = gradient.dot(direction);
+  if (!(slope < 0.0)) return false;
+
+  const Eigen::Vector3d step = direction.x() * tangent.u + direction.y() * tangent.v;
+  std::vector<FaceReferences> moved_references(ring.size());
+  double fraction = 1.0;
+  for (int tries = 0; tries < 12; ++tries, fraction *= 0.5) {
+    const std::optional<SurfacePoint> there = walk_on_surface(target_, here, fraction * step);
+    if (!there) continue;
+    const Eigen::Vector3d y = position(target_, *there);
+    if (!within_slack(v, y)) continue;
+    const Eigen::Vector3d there_normal = reference_.interpolated_normal(*there);
+    for (std::size_t k = 0; k < ring.size(); ++k)
+      moved_references[k] = reference_normal(ring[k].face, v, *there, there_normal);
+    const FaceValue ring_after = ring_value(v, moved_references, y);
+    const double after = ring_after.energy;
+    // A folded face may change only by opening, by each count.
+    if (ring_after.against_own > ring_before.against_own ||
+        ring_after.against_corners > ring_before.against_corners ||
+        (keep_strict_folds_ && ring_after.against_corners > 0 &&
+         strict_in_ring(v, *there, y) > strict_before))
+      continue;
+    if (after < before + 1e-4 * fraction * slope) {
+      locations_[v] = *there;
       positions_[v] = y;
       normals_[v] = there_normal;
       return true;
     }
-    return false;
   }
+  return false;
+}
 
-  // One sweep over the free vertices that may move (they or a neighbour moved in the last
-  // sweep), a colour at a time. Returns whether any vertex moved.
-  bool sweep() {
-    std::vector<char> active(moved_.size(), 0);
-    for (std::size_t v = 0; v < moved_.size(); ++v) {
-      if (!moved_[v]) continue;
-      active[v] = 1;
-      for (const Incidence& in : incidences_[v]) {
-        for (int u : faces_[in.face]) active[u] = 1;
-      }
-    }
-    std::fill(moved_.begin(), moved_.end(), 0);
-    for (const std::vector<int>& colour : colours_) {
-      tbb::parallel_for(0, static_cast<int>(colour.size()), [&](int k) {
-        if (active[colour[k]]) moved_[colour[k]] = move_vertex(colour[k]);
-      });
-    }
-    return std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
-  }
-
-  // Rest shapes: each template face's inverse edge matrix in a frame of its own plane, divided
-  // by the template-to-target scale, and its share of the template's area.
-  void measure_template(const Mesh& source) {
-    const int n_faces = static_cast<int>(faces_.size());
-    rest_inverse_.resize(n_faces);
-    weight_.resize(n_faces);
-    double template_area = 0.0;
-    for (int f = 0; f < n_faces; ++f) {
-      const Eigen::Vector3d a = position(source, source.vertex_handle(faces_[f][0]));
-      const Eigen::Vector3d e1 = position(source, source.vertex_handle(faces_[f][1])) - a;
-      const Eigen::Vector3d e2 = position(source, source.vertex_handle(faces_[f][2])) - a;
-      const Eigen::Vector3d normal = e1.cross(e2);
-      weight_[f] = 0.5 * normal.norm();
-      template_area += weight_[f];
-      const Eigen::Vector3d u = e1.normalized();
-      const Eigen::Vector3d w = normal.normalized().cross(u);
-      Eigen::Matrix2d edges;
-      edges << e1.dot(u), e2.dot(u), e1.dot(w), e2.dot(w);
-      rest_inverse_[f] = edges.inverse();
-    }
-    const double scale = std::sqrt(reference_.target_area() / template_area);
-    for (int f = 0; f < n_faces; ++f) {
-      rest_inverse_[f] /= scale;
-      weight_[f] /= template_area;
-    }
-  }
-
-  // Greedy colouring of the free vertices in index order: no two of a colour share a face.
-  void colour_free_vertices() {
-    const int n_vertices = static_cast<int>(locations_.size());
-    std::vector<int> colour(n_vertices, -1);
-    std::vector<int> seen_by;  // colour -> last vertex that saw it among its neighbours
-    for (int v = 0; v < n_vertices; ++v) {
-      if (!is_free(v)) continue;
-      for (const Incidence& in : incidences_[v]) {
-        for (int u : faces_[in.face]) {
-          if (u == v || colour[u] < 0) continue;
-          if (colour[u] >= static_cast<int>(seen_by.size())) seen_by.resize(colour[u] + 1, -1);
-          seen_by[colour[u]] = v;
-        }
-      }
-      int c = 0;
-      while (c < static_cast<int>(seen_by.size()) && seen_by[c] == v) ++c;
-      colour[v] = c;
-      if (c >= static_cast<int>(colours_.size())) colours_.resize(c + 1);
-      colours_[c].push_back(v);
-    }
-  }
-
-  bool is_free(int v) const { return pin_index_[v] < 0 || pinned_[pin_index_[v]].slack > 0.0; }
-
-  // The face's references at the current images, with `moved` (if >= 0) at `at`, where the
-  // target's interpolated normal is `at_normal`.
-  FaceReferences reference_normal(int f, int moved = -1, const SurfacePoint& at = {},
-                                  const Eigen::Vector3d& at_normal = Eigen::Vector3d::Zero()) const {
-    const auto& t = faces_[f];
-    const auto location = [&](int v) -> const SurfacePoint* { return v == moved ? &at : &locations_[v]; };
-    const auto normal = [&](int v) -> const Eigen::Vector3d* { return v == moved ? &at_normal : &normals_[v]; };
-    const std::array<const SurfacePoint*, 3> corners = {location(t[0]), location(t[1]), location(t[2])};
-    // On one target face both references are that face's normal (RemeshQualityResult).
-    const int shared = reference_.shared_face(corners);
-    if (shared >= 0) return {reference_.face_normal(shared), reference_.face_normal(shared)};
-    return {*normal(t[0]) + *normal(t[1]) + *normal(t[2]),
-            reference_.face_normal(corners[0]->face) + reference_.face_normal(corners[1]->face) +
-                reference_.face_normal(corners[2]->face)};
-  }
-
-  // The Jacobian of face f's map (see chord_edges), with `moved` (if >= 0) at `at`; `frame`
-  // receives the image's frame (invalid when the image is collapsed or edge-on).
-  Eigen::Matrix2d jacobian(int f, const FaceReferences& reference, int moved, const Eigen::Vector3d& at,
-                           PlaneFrame& frame) const {
-    const auto& t = faces_[f];
-    const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
-    return chord_edges(point(t[1]) - point(t[0]), point(t[2]) - point(t[0]), reference, frame) * rest_inverse_[f];
-  }
-
-  struct FaceValue {
-    double energy = 0.0;  // weighted
-    bool folded = false;  // against either reference, collapsed or edge-on
-    int against_own = 0;  // 1 when folded against the remesh's own reference normal (or collapsed)
-    int against_corners = 0;  // 1 when folded against the corners' target faces (or collapsed)
-  };
-
-  // Face f is folded for the optimizer when its image is folded, collapsed or edge-on against
-  // either reference (chord_edges).
-  FaceValue face_value(int f, const FaceReferences& reference, int moved, const Eigen::Vector3d& at) const {
-    PlaneFrame frame;
-    const Eigen::Matrix2d j = jacobian(f, reference, moved, at, frame);
-    FaceValue value;
-    value.folded = !frame.valid || !(j.determinant() > 0.0);
-    value.against_own = frame.against_own || !frame.valid;
-    value.against_corners = frame.against_corners || !frame.valid;
-    value.energy =
-        weight_[f] * (value.folded ? kFoldedFaceEnergy : foldover_free_energy(j, settings_.area_weight));
-    value.energy += coverage_energy(f, moved, at);
-    return value;
-  }
-
-  double total_coverage_energy() const {
-    double sum = 0.0;
-    for (int f = 0; f < static_cast<int>(pulls_.size()); ++f) sum += coverage_energy(f, -1, {});
-    return sum;
-  }
-
-  // The coverage pulls on face f, with `moved` (if >= 0) at `at`.
-  double coverage_energy(int f, int moved, const Eigen::Vector3d& at) const {
-    if (pulls_.empty() || pulls_[f].empty()) return 0.0;
-    const auto& t = faces_[f];
-    const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
-    double energy = 0.0;
-    for (const CoveragePull& pull : pulls_[f]) {
-      const Eigen::Vector3d nearest = pull.bary[0] * point(t[0]) + pull.bary[1] * point(t[1]) + pull.bary[2] * point(t[2]);
-      const double excess = std::max((pull.point - nearest).norm() - coverage_margin_, 0.0) / coverage_margin_;
-      energy += pull.weight * excess * excess;
-    }
-    return energy;
-  }
-
-  // d(coverage energy of face f)/d(position of its corner `corner`), `moved` at `at`.
-  Eigen::Vector3d coverage_gradient(int f, int corner, int moved, const Eigen::Vector3d& at) const {
-    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
-    if (pulls_.empty() || pulls_[f].empty()) return gradient;
-    const auto& t = faces_[f];
-    const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
-    for (const CoveragePull& pull : pulls_[f]) {
-      const Eigen::Vector3d nearest = pull.bary[0] * point(t[0]) + pull.bary[1] * point(t[1]) + pull.bary[2] * point(t[2]);
-      const Eigen::Vector3d away = pull.point - nearest;
-      const double gap = away.norm();
-      if (!(gap > coverage_margin_)) continue;
-      const double excess = (gap - coverage_margin_) / coverage_margin_;
-      gradient -= pull.weight * 2.0 * excess / coverage_margin_ * pull.bary[corner] * away / gap;
-    }
-    return gradient;
-  }
-
-  // Each target vertex's share of the target's area, and the coverage margin.
-  void measure_target_areas() {
-    const double area = reference_.target_area();
-    target_vertex_share_ = vertex_areas(target_);
-    for (double& share : target_vertex_share_) share /= area;
-    coverage_margin_ = 0.5 * kUncoveredGap * std::sqrt(area);
-  }
-
-  // Finds, for every target vertex farther than the margin from the remesh, the remesh point
-  // nearest to it.
-  void refresh_coverage() {
-    pulls_.clear();
-    if (!(settings_.coverage_weight > 0.0)) return;
-    pulls_.resize(faces_.size());
-    const ClosestPointIndex remesh(positions_, faces_);
-    const int n_target = static_cast<int>(target_.n_vertices());
-    std::vector<ClosestPoint> nearest(n_target);
-    tbb::parallel_for(0, n_target, [&](int v) {
-      nearest[v] = remesh.closest(position(target_, target_.vertex_handle(v)));
-    });
-    for (int v = 0; v < n_target; ++v) {
-      if (!(nearest[v].distance > coverage_margin_)) continue;
-      pulls_[nearest[v].location.face].push_back({position(target_, target_.vertex_handle(v)), nearest[v].location.bary,
-                                                   settings_.coverage_weight * target_vertex_share_[v]});
-    }
-  }
-
-  double total_energy() const {
-    std::vector<double> energies(faces_.size());
-    tbb::parallel_for(0, static_cast<int>(faces_.size()),
-                      [&](int f) { energies[f] = face_value(f, reference_normal(f), -1, {}).energy; });
-    double sum = 0.0;
-    for (double e : energies) sum += e;  // in face order: the same at any thread count
-    return sum;
-  }
-
-  // The energy per template area over the faces that do not fold.
-  double mean_unfolded_energy() const {
-    double energy = 0.0;
-    double weight = 0.0;
-    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
-      PlaneFrame frame;
-      const FaceReferences reference = reference_normal(f);
-      if (face_value(f, reference, -1, {}).folded) continue;
-      const Eigen::Matrix2d j = jacobian(f, reference, -1, {}, frame);
-      energy += weight_[f] * foldover_free_energy(j, settings_.area_weight);
-      weight += weight_[f];
-    }
-    return weight > 0.0 ? energy / weight : 0.0;
-  }
-
-  int count_folded() const {
-    int folded = 0;
-    for (int f = 0; f < static_cast<int>(faces_.size()); ++f)
-      folded += face_value(f, reference_normal(f), -1, {}).folded;
-    return folded;
-  }
-
-  // Energy of v's faces with v's image at `at` (`references` the faces' references there), and
-  // how many are folded against each reference (`folded` unset).
-  FaceValue ring_value(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at) const {
-    FaceValue ring;
-    for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
-      const FaceValue value = face_value(incidences_[v][k].face, references[k], v, at);
-      ring.energy += value.energy;
-      ring.against_own += value.against_own;
-      ring.against_corners += value.against_corners;
-    }
-    return ring;
-  }
-
-  // d(ring energy)/d(v's image) in 3-D, the reference normals held; folded faces contribute
-  // nothing (their energy is constant).
-  Eigen::Vector3d ring_gradient(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at) const {
-    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
-    for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
-      const Incidence& in = incidences_[v][k];
-      gradient += coverage_gradient(in.face, in.corner, v, at);
-      PlaneFrame frame;
-      const Eigen::Matrix2d j = jacobian(in.face, references[k], v, at, frame);
-      if (!frame.valid || !(j.determinant() > 0.0)) continue;
-      // J = [x1 - x0, x2 - x0] R: dE/d(edge matrix) = dE/dJ R^T.
-      const Eigen::Matrix2d by_edges = weight_[in.face] *
-                                       foldover_free_energy_gradient(j, settings_.area_weight) *
-                                       rest_inverse_[in.face].transpose();
-      const Eigen::Vector2d by_point =
-          in.corner == 0 ? Eigen::Vector2d(-by_edges.col(0) - by_edges.col(1)) : Eigen::Vector2d(by_edges.col(in.corner - 1));
-      gradient += by_point.x() * frame.u + by_point.y() * frame.v;
-    }
-    return gradient;
-  }
-
-  bool within_slack(int v, const Eigen::Vector3d& at) const {
-    const int pin = pin_index_[v];
-    return pin < 0 || (at - pinned_[pin].landmark).norm() <= pinned_[pin].slack;
-  }
-
-  // One Newton step of v's image in the plane of its target face, walked on the surface, with
-  // backtracking until its faces' energy falls and no more of them fold. Returns whether the
-  // image moved.
-  bool move_vertex(int v) {
-    const std::vector<Incidence>& ring = incidences_[v];
-    if (ring.empty()) return false;
-    const SurfacePoint& here = locations_[v];
-    const Eigen::Vector3d x = positions_[v];
-    std::vector<FaceReferences> references(ring.size());
-    for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face);
-    const FaceValue ring_before = ring_value(v, references, x);
-    const double before = ring_before.energy;
-    if (!std::isfinite(before)) return false;
-
-    // The tangent plane: the target face under the image.
-    const PlaneFrame tangent = plane_frame(reference_.face_normal(here.face));
-    if (!tangent.valid) return false;
-    // The step's scale: the mean length of v's edges (the shortest can be near 0 while a
-    // collapsed face opens again).
-    double edge_sum = 0.0;
-    int edge_count = 0;
-    for (const Incidence& in : ring) {
-      for (int u : faces_[in.face]) {
-        if (u == v) continue;
-        edge_sum += (positions_[u] - x).norm();
-        ++edge_count;
-      }
-    }
-    const double mean_edge = edge_sum / edge_count;
-    if (!(mean_edge > 0.0)) return false;
-    const auto in_plane = [&](const Eigen::Vector3d& g) { return Eigen::Vector2d(g.dot(tangent.u), g.dot(tangent.v)); };
-    const Eigen::Vector2d gradient = in_plane(ring_gradient(v, references, x));
-    if (!gradient.allFinite() || gradient.norm() == 0.0) return false;
-
-    // Finite-difference Hessian of the analytic gradient, made positive definite.
-    const double h = 1e-4 * mean_edge;
-    Eigen::Matrix2d hessian;
-    hessian.col(0) = (in_plane(ring_gradient(v, references, x + h * tangent.u)) - gradient) / h;
-    hessian.col(1) = (in_plane(ring_gradient(v, references, x + h * tangent.v)) - gradient) / h;
-    hessian = 0.5 * (hessian + hessian.transpose()).eval();
-    Eigen::Vector2d direction = -gradient;
-    if (hessian.allFinite()) {
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(hessian);
-      Eigen::Vector2d values = eigen.eigenvalues();
-      const double floor = std::max(1e-8 * std::abs(values.maxCoeff()), 1e-300);
-      values = values.cwiseMax(floor);
-      direction = -(eigen.eigenvectors() * values.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose()) *
-                  gradient;
-    }
-    // Never farther than half an edge in one step: the step stays near the ring.
-    const double length = direction.norm();
-    if (!(length > 0.0) || !std::isfinite(length)) return false;
-    if (length > 0.5 * mean_edge) direction *= 0.5 * mean_edge / length;
-    const double slope = gradient.dot(direction);
-    if (!(slope < 0.0)) return false;
-
-    const Eigen::Vector3d step = direction.x() * tangent.u + direction.y() * tangent.v;
-    std::vector<FaceReferences> moved_references(ring.size());
-    double fraction = 1.0;
-    for (int tries = 0; tries < 12; ++tries, fraction *= 0.5) {
-      const std::optional<SurfacePoint> there = walk_on_surface(target_, here, fraction * step);
-      if (!there) continue;
-      const Eigen::Vector3d y = position(target_, *there);
-      if (!within_slack(v, y)) continue;
-      const Eigen::Vector3d there_normal = reference_.interpolated_normal(*there);
-      for (std::size_t k = 0; k < ring.size(); ++k)
-        moved_references[k] = reference_normal(ring[k].face, v, *there, there_normal);
-      const FaceValue ring_after = ring_value(v, moved_references, y);
-      const double after = ring_after.energy;
-      // A folded face may change only by opening.
-      if (ring_after.against_own > ring_before.against_own ||
-          ring_after.against_corners > ring_before.against_corners)
-        continue;
-      if (after < before + 1e-4 * fraction * slope) {
-        locations_[v] = *there;
-        positions_[v] = y;
-        normals_[v] = there_normal;
-        return true;
-      }
-    }
-    return false;
-  }
-
-  const std::vector<std::array<int, 3>>& faces_;
-  const Mesh& target_;
-  const RemeshReference reference_;
-  const MapOptimizationSettings settings_;
-  std::vector<SurfacePoint> locations_;
-  std::vector<Eigen::Vector3d> positions_;
-  std::vector<Eigen::Vector3d> normals_;         // the target's interpolated normal at each image
-  std::vector<Eigen::Matrix2d> rest_inverse_;
-  std::vector<double> weight_;
-  std::vector<std::vector<Incidence>> incidences_;
-  std::vector<int> pin_index_;  // per vertex: its index in pinned_, or -1
-  std::vector<PinnedVertex> pinned_;
-  std::vector<std::vector<int>> colours_;
-  std::vector<char> moved_;  // per vertex: whether it moved in the last sweep
-  std::vector<double> target_vertex_share_;        // per target vertex: its share of the target's area
-  double coverage_margin_ = 0.0;                   // gap (target units) a target vertex may have for free
-  std::vector<std::vector<CoveragePull>> pulls_;   // per template face; empty when coverage is off
-};
-
-}  // namespace
+}  // namespace map_optimizer
 
 MapOptimizationResult optimize_map(const Mesh& source, const std::vector<std::array<int, 3>>& faces,
                                    const Mesh& target, std::vector<SurfacePoint> locations,
-                                   const std::vector<PinnedVertex>& pinned, const MapOptimizationSettings& settings) {
+                                   const std::vector<PinnedVertex>& pinned,
+                                   const MapOptimizationSettings& settings) {
   Stopwatch watch;
   const int n_vertices = static_cast<int>(source.n_vertices());
   if (static_cast<int>(locations.size()) != n_vertices) {
@@ -650,18 +526,20 @@ MapOptimizationResult optimize_map(const Mesh& source, const std::vector<std::ar
   }
   for (const auto& face : faces) {
     for (int v : face) {
-      if (v < 0 || v >= n_vertices) throw ParamError("map optimization: face vertex " + std::to_string(v) + " out of range");
+      if (v < 0 || v >= n_vertices)
+        throw ParamError("map optimization: face vertex " + std::to_string(v) + " out of range");
     }
   }
   for (const SurfacePoint& location : locations) {
     if (location.face < 0 || location.face >= static_cast<int>(target.n_faces()))
-      throw ParamError("map optimization: image on target face " + std::to_string(location.face) + " out of range");
+      throw ParamError("map optimization: image on target face " + std::to_string(location.face) +
+                       " out of range");
   }
   for (const PinnedVertex& pin : pinned) {
     if (pin.vertex < 0 || pin.vertex >= n_vertices)
       throw ParamError("map optimization: pinned vertex " + std::to_string(pin.vertex) + " out of range");
   }
-  MapOptimizer optimizer(source, faces, target, std::move(locations), pinned, settings);
+  map_optimizer::MapOptimizer optimizer(source, faces, target, std::move(locations), pinned, settings);
   MapOptimizationResult result = optimizer.run();
   result.seconds = watch.lap();
   return result;

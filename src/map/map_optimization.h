@@ -42,7 +42,11 @@
 /// face of its ring (mirrored in the line through the face's other two corners, which turns the
 /// face over where the centroid lies on its wrong side: a fold with an anchor for a corner), when
 /// that leaves its faces folded less (the remesh's own count and the strict one), no more by
-/// either, and lowers their energy.
+/// either, and lowers their energy. A fold at an anchor that no such try opens (the face an
+/// anchor lies inside, all three corners held; a face round a vertex anchor whose free corners
+/// each fold another face when they move alone) is laid again: the face congruent to its
+/// template shape, its landmark point on the landmark, turned to each of 16 angles, its corners
+/// dropped onto the target, taken by the same rule. An in-face anchor's corners move only so.
 
 #include "core/mesh.h"
 #include "core/surface_point.h"
@@ -73,6 +77,10 @@ struct PinnedVertex {
   int vertex = -1;                                     ///< template vertex id
   Eigen::Vector3d landmark = Eigen::Vector3d::Zero();  ///< the target point it belongs at
   double slack = 0.0;  ///< how far (target units) its image may move from the landmark; 0: not at all
+  /// Which anchor holds it: the corners of the face (or edge) an anchor lies inside share it;
+  /// -1: an anchor of its own
+  int anchor = -1;
+  double bary = 1.0;  ///< the landmark's barycentric coordinate at this vertex (1: a vertex anchor)
 };
 
 /// What optimize_map made.
@@ -103,7 +111,8 @@ struct MapOptimizationResult {
 /// Optimize the map template -> target given by `locations` (#template V target surface
 /// points, the remesh's vertices). The faces in `faces` are the template's (vertex ids, fv
 /// order); `pinned` vertices stay where they are, or within their slack of their landmark,
-/// every other vertex moves.
+/// every other vertex moves (the corners of an in-face anchor's face only together, the face
+/// laid again about its landmark to open a fold).
 ///
 /// The sweeps lower the energy without folding any face that is not folded and without ever
 /// raising the energy, a folded face counting a constant that opening it lowers. So the result

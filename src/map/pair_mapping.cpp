@@ -131,7 +131,8 @@ struct MapAttempt {
 };
 
 // The template vertices an anchor holds: a vertex anchor's vertex, within `slack` of the
-// target's landmark; every corner of the face an anchor inside a face lies in, held where it is.
+// target's landmark; every corner of the face an anchor inside a face lies in, held where it is
+// (they move together only, map/map_optimization.h).
 std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& anchors, const Mesh& source,
                                           const Mesh& target, const PairSettings& settings) {
   std::vector<PinnedVertex> pinned;
@@ -143,7 +144,9 @@ std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& an
     const int corners_used = static_cast<int>((on_template.bary.array() > 0.0).count());
     int corner = 0;
     for (VertexHandle v : source.fv_range(source.face_handle(on_template.face))) {
-      if (on_template.bary[corner++] > 0.0) pinned.push_back({v.idx(), landmark, corners_used == 1 ? slack : 0.0});
+      const double bary = on_template.bary[corner++];
+      if (bary > 0.0)
+        pinned.push_back({v.idx(), landmark, corners_used == 1 ? slack : 0.0, static_cast<int>(k), bary});
     }
   }
   return pinned;

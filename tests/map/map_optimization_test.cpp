@@ -243,6 +243,98 @@ TEST(MapOptimization, AFoldLeftAfterTheSweepsIsOpenedTowardsItsRingsCentroid) {
   EXPECT_LT((result.positions[thrown] - position(pair.target, pair.truth[thrown])).norm(), pair.mean_edge);
 }
 
+// `pair`'s pins but those at `corners` (a template face's), then an anchor inside that face at
+// `bary`, whose landmark (returned) is where the true map puts that point: on the target, whose
+// face there is the template's, moved.
+Eigen::Vector3d pin_inside_face(const SimilarityCase& pair, const std::array<int, 3>& corners,
+                                const Eigen::Vector3d& bary, std::vector<PinnedVertex>& pinned) {
+  Eigen::Vector3d landmark = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 3; ++c) landmark += bary[c] * position(pair.target, pair.truth[corners[c]]);
+  for (const PinnedVertex& pin : pair.pinned) {
+    if (std::find(corners.begin(), corners.end(), pin.vertex) == corners.end()) pinned.push_back(pin);
+  }
+  const int anchor = static_cast<int>(pinned.size());
+  for (int c = 0; c < 3; ++c) pinned.push_back({corners[c], landmark, 0.0, anchor, bary[c]});
+  return landmark;
+}
+
+// A fold of the face an anchor lies inside, whose three corners the anchor holds, so that no
+// corner may move alone: the face is laid again about the landmark, which opens it, and the
+// landmark's point of the face stays on the landmark. Held as three anchors of their own, the
+// corners stay where they are and so does the fold.
+TEST(MapOptimization, TheFaceAnInFaceAnchorFoldsIsLaidAgainAboutItsLandmark) {
+  SimilarityCase pair(0.0);
+  const std::array<int, 3> corners = pair.faces[400];
+  const Eigen::Vector3d bary(0.2, 0.3, 0.5);
+  std::vector<PinnedVertex> pinned;
+  const Eigen::Vector3d landmark = pin_inside_face(pair, corners, bary, pinned);
+  const int anchor = static_cast<int>(pinned.size()) - 3;
+  std::swap(pair.start[corners[1]], pair.start[corners[2]]);  // the face turned over
+  ASSERT_GT(folded(pair.faces, pair.start, pair.target), 0);
+  MapOptimizationSettings no_sweeps;
+  no_sweeps.max_sweeps = 0;
+
+  const MapOptimizationResult laid =
+      optimize_map(pair.source, pair.faces, pair.target, pair.start, pinned, no_sweeps);
+  EXPECT_GT(laid.flipped_before, 0);
+  EXPECT_EQ(laid.flipped_after, 0);
+  EXPECT_EQ(folded(pair.faces, laid.locations, pair.target), 0);
+  EXPECT_LT(laid.energy.back(), laid.energy.front());
+  Eigen::Vector3d landmark_image = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 3; ++c) landmark_image += bary[c] * laid.positions[corners[c]];
+  EXPECT_LT((landmark_image - landmark).norm(), 0.05 * pair.mean_edge);
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::Vector3d truth = position(pair.target, pair.truth[corners[c]]);
+    EXPECT_LT((laid.positions[corners[c]] - truth).norm(), 0.3 * pair.mean_edge);
+  }
+
+  for (std::size_t k = anchor; k < pinned.size(); ++k) {
+    pinned[k].anchor = -1;
+    pinned[k].bary = 1.0;
+    pinned[k].landmark = position(pair.target, pair.start[pinned[k].vertex]);
+  }
+  const MapOptimizationResult held =
+      optimize_map(pair.source, pair.faces, pair.target, pair.start, pinned, no_sweeps);
+  EXPECT_GT(held.flipped_after, 0);
+  for (int v : corners) {
+    EXPECT_EQ(held.locations[v].face, pair.start[v].face);
+    EXPECT_EQ(held.locations[v].bary, pair.start[v].bary);
+  }
+}
+
+// The layout's map can leave an in-face anchor's point of its face off the landmark (its corners
+// held where that map put them): here the corners and the ring about them slid by 0.3 edges. The
+// corners move together onto the landmark, without folding anything.
+TEST(MapOptimization, AnInFaceAnchorsPointIsBroughtOntoItsLandmark) {
+  SimilarityCase pair(0.0);
+  const std::array<int, 3> corners = pair.faces[400];
+  const Eigen::Vector3d bary(0.6, 0.3, 0.1);
+  std::vector<PinnedVertex> pinned;
+  const Eigen::Vector3d landmark = pin_inside_face(pair, corners, bary, pinned);
+  const Eigen::Vector3d normal =
+      to_eigen(pair.target.calc_face_normal(pair.target.face_handle(pair.truth[corners[0]].face)));
+  const Eigen::Vector3d slide = 0.3 * pair.mean_edge * normal.unitOrthogonal();
+  std::vector<int> slid(corners.begin(), corners.end());
+  for (int v : corners) {
+    for (VertexHandle u : pair.source.vv_range(pair.source.vertex_handle(v))) slid.push_back(u.idx());
+  }
+  for (int v : slid) pair.start[v] = walk_on_surface(pair.target, pair.truth[v], slide).value();
+  const auto landmark_miss = [&](const std::vector<Eigen::Vector3d>& positions) {
+    Eigen::Vector3d point = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 3; ++c) point += bary[c] * positions[corners[c]];
+    return (point - landmark).norm();
+  };
+  std::vector<Eigen::Vector3d> start_positions;
+  for (const SurfacePoint& p : pair.start) start_positions.push_back(position(pair.target, p));
+  ASSERT_GT(landmark_miss(start_positions), 0.2 * pair.mean_edge);
+  ASSERT_EQ(folded(pair.faces, pair.start, pair.target), 0);
+
+  const MapOptimizationResult result = optimize_map(pair.source, pair.faces, pair.target, pair.start, pinned);
+  EXPECT_LT(landmark_miss(result.positions), 0.02 * pair.mean_edge);
+  EXPECT_EQ(result.flipped_after, 0);
+  EXPECT_EQ(folded(pair.faces, result.locations, pair.target), 0);
+}
+
 TEST(MapOptimization, RefusesImagesOfTheWrongSize) {
   const SimilarityCase pair(0.0);
   std::vector<SurfacePoint> fewer = pair.start;

@@ -1,0 +1,332 @@
+// The moves of a few vertices at once outside the sweeps of the map optimization
+// (map/map_optimizer.h): opening the folds the sweeps leave, and the anchors inside faces.
+
+#include "core/surface_walk.h"
+#include "map/map_optimizer.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <map>
+#include <numbers>
+#include <optional>
+
+namespace xparam::map_optimizer {
+namespace {
+
+// Passes of open_remaining_folds, at most.
+constexpr int kFoldPasses = 3;
+
+// Steps centre_in_face_anchors takes, at most.
+constexpr int kCentringRounds = 3;
+
+// Angles lay_anchor_face_again tries, evenly spaced, and how many rings about the face it lays
+// with it at most.
+constexpr int kLayAngles = 32;
+constexpr int kLayRings = 3;
+
+}  // namespace
+
+// Folds the sweeps leave where no descent step of one vertex opens them (a tiny face
+// across a sharp crease of the target, an ear's rim): each free corner of a face folded by the
+// remesh's own count or the strict one, in vertex order, tries the target point nearest to the
+// centroid of its neighbours' images, then the points halfway and a quarter of the way there,
+// then across the far side of each folded face of its ring (move_towards_ring_centroid).
+// A try is taken when it leaves fewer of the corner's faces folded by those two counts
+// together, none more by either or against the optimizer's second reference, and lowers their
+// energy. Passes repeat while one opens a fold, at most kFoldPasses. Returns whether any corner
+// moved.
+bool MapOptimizer::open_remaining_folds() {
+  std::optional<ClosestPointIndex> on_target;
+  bool any = false;
+  for (int pass = 0; pass < kFoldPasses; ++pass) {
+    std::vector<int> folded;
+    std::vector<int> corners;
+    for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
+      if (!folded_by_either_count(f)) continue;
+      folded.push_back(f);
+      for (int v : faces_[f])
+        if (is_free(v)) corners.push_back(v);
+    }
+    if (folded.empty()) break;
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    if (!on_target) on_target.emplace(target_);
+    bool opened = false;
+    for (int v : corners) opened = move_towards_ring_centroid(v, *on_target) || opened;
+    for (int f : folded) {
+      if (!folded_by_either_count(f)) continue;
+      const std::vector<int> anchor = held_anchor_of(f);
+      if (!anchor.empty()) opened = lay_anchor_face_again(f, anchor, *on_target) || opened;
+    }
+    if (!opened) break;
+    any = true;
+  }
+  return any;
+}
+
+bool MapOptimizer::folded_by_either_count(int f) const {
+  return face_value(f, reference_normal(f), -1, {}).against_own || strictly_folded(f, -1, {}, {});
+}
+
+// The pins (indices into pinned_) of an anchor whose landmark lies in face f (or on its
+// boundary) and that holds one of its corners where it is; empty when there is none.
+std::vector<int> MapOptimizer::held_anchor_of(int f) const {
+  const auto& t = faces_[f];
+  for (int v : t) {
+    const int pin = pin_index_[v];
+    if (pin < 0 || pinned_[pin].slack > 0.0) continue;
+    std::vector<int> pins;
+    for (int k = 0; k < static_cast<int>(pinned_.size()); ++k) {
+      const bool same = k == pin || (pinned_[pin].anchor >= 0 && pinned_[k].anchor == pinned_[pin].anchor);
+      if (same) pins.push_back(k);
+    }
+    if (std::all_of(pins.begin(), pins.end(),
+                    [&](int k) { return std::find(t.begin(), t.end(), pinned_[k].vertex) != t.end(); }))
+      return pins;
+  }
+  return {};
+}
+
+// An anchor inside a face holds the face's corners where the layout's map put them, and there
+// the landmark's point of the face (the landmark's barycentrics of the corners' images) can lie
+// well off the landmark where that map is squeezed about the anchor (up to 2.7 cm on FAUST's
+// scan landmarks). The corners move together by the miss (or half or a quarter of it), alone or
+// with the free vertices up to kLayRings rings about them, each walked along the target, while
+// that shortens the miss and folds none of the faces about them more (by either reference or
+// the strict count), a few times. The sweeps then relax what was dragged.
+void MapOptimizer::centre_in_face_anchors() {
+  std::map<int, std::vector<int>> pins_by_anchor;
+  for (int k = 0; k < static_cast<int>(pinned_.size()); ++k) {
+    if (pinned_[k].anchor >= 0 && pinned_[k].bary < 1.0 && pinned_[k].slack == 0.0)
+      pins_by_anchor[pinned_[k].anchor].push_back(k);
+  }
+  for (const auto& [anchor, pins] : pins_by_anchor) {
+    std::vector<int> corners;
+    for (int k : pins) corners.push_back(pinned_[k].vertex);
+    const auto miss = [&] {
+      Eigen::Vector3d point = Eigen::Vector3d::Zero();
+      for (int k : pins) point += pinned_[k].bary * positions_[pinned_[k].vertex];
+      return Eigen::Vector3d(pinned_[pins.front()].landmark - point);
+    };
+    for (int round = 0; round < kCentringRounds; ++round) {
+      const Eigen::Vector3d full = miss();
+      bool stepped = false;
+      for (const double fraction : {1.0, 0.5, 0.25}) {
+        std::vector<int> dragged = corners;
+        for (int rings = 0; rings <= kLayRings && !stepped; ++rings) {
+          if (rings > 0) add_free_ring(dragged);
+          stepped = drag(dragged, fraction * full, [&] { return miss().norm(); });
+        }
+        if (stepped) break;
+      }
+      if (!stepped) break;
+    }
+  }
+}
+
+// Moves `vertices` by `step`, each walked along the target, when that shortens `miss` and folds
+// none of the faces about them more; returns whether they moved.
+bool MapOptimizer::drag(const std::vector<int>& vertices, const Eigen::Vector3d& step,
+                        const std::function<double()>& miss) {
+  const std::vector<int> around = faces_about(vertices);
+  const FoldTally before = tally(around);
+  const double miss_before = miss();
+  std::vector<Image> start, dragged;
+  for (int v : vertices) {
+    const std::optional<SurfacePoint> there = walk_on_surface(target_, locations_[v], step);
+    if (!there) return false;
+    start.push_back(image_of(v));
+    dragged.push_back({*there, position(target_, *there), reference_.interpolated_normal(*there)});
+  }
+  for (std::size_t k = 0; k < vertices.size(); ++k) place(vertices[k], dragged[k]);
+  if (miss() < miss_before && !tally(around).folds_more_than(before)) return true;
+  for (std::size_t k = 0; k < vertices.size(); ++k) place(vertices[k], start[k]);
+  return false;
+}
+
+// Adds to `vertices` the free vertices that share a face with one of them.
+void MapOptimizer::add_free_ring(std::vector<int>& vertices) const {
+  const std::size_t inner = vertices.size();
+  for (std::size_t k = 0; k < inner; ++k) {
+    for (const Incidence& in : incidences_[vertices[k]]) {
+      for (int u : faces_[in.face])
+        if (is_free(u) && std::find(vertices.begin(), vertices.end(), u) == vertices.end())
+          vertices.push_back(u);
+    }
+  }
+}
+
+void MapOptimizer::place(int v, const Image& image) {
+  locations_[v] = image.location;
+  positions_[v] = image.position;
+  normals_[v] = image.normal;
+}
+
+// The faces about `vertices`, ascending.
+std::vector<int> MapOptimizer::faces_about(const std::vector<int>& vertices) const {
+  std::vector<int> faces;
+  for (int v : vertices) {
+    for (const Incidence& in : incidences_[v]) faces.push_back(in.face);
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  return faces;
+}
+
+MapOptimizer::FoldTally MapOptimizer::tally(const std::vector<int>& faces) const {
+  FoldTally sum;
+  for (int f : faces) {
+    const FaceValue value = face_value(f, reference_normal(f), -1, {});
+    sum.energy += value.energy;
+    sum.against_own += value.against_own;
+    sum.against_corners += value.against_corners;
+    sum.strict += strictly_folded(f, -1, {}, {});
+  }
+  return sum;
+}
+
+// Lays face f again about the landmark of `anchor` (its pins, held_anchor_of) with the
+// template's neighbourhood of it: the face's corners, alone and with the free vertices up to
+// kLayRings rings about them, flattened into the face's plane on the template at the
+// template-to-target scale (and at 0.7, 0.5, 0.35 of it: a squeezed spot), the landmark's point
+// of the face on the landmark, turned to each of kLayAngles angles in the target's tangent plane
+// there, each vertex then walked there along the target from the landmark (a closest point
+// could land on the far side of a thin ear); vertices another anchor holds stay. Of the lays
+// that fold no more of the faces about them (by either reference or the strict count) and lower
+// their energy, the one that lowers it most is taken. Returns whether one was.
+bool MapOptimizer::lay_anchor_face_again(int f, const std::vector<int>& anchor,
+                                         const ClosestPointIndex& on_target) {
+  const auto& t = faces_[f];
+  const auto held = [&](int v) {
+    return std::any_of(anchor.begin(), anchor.end(), [&](int k) { return pinned_[k].vertex == v; });
+  };
+  const Eigen::Vector3d origin = template_positions_[t[0]];
+  const Eigen::Vector3d along = (template_positions_[t[1]] - origin).normalized();
+  const Eigen::Vector3d normal = along.cross(Eigen::Vector3d(template_positions_[t[2]] - origin));
+  const Eigen::Vector3d across = normal.cross(along).normalized();  // right-handed with the normal
+  const auto flat = [&](int v) -> Eigen::Vector2d {
+    const Eigen::Vector3d offset = template_positions_[v] - origin;
+    return Eigen::Vector2d(offset.dot(along), offset.dot(across)) * template_scale_;
+  };
+  Eigen::Vector2d landmark_flat = Eigen::Vector2d::Zero();
+  for (int k : anchor) landmark_flat += pinned_[k].bary * flat(pinned_[k].vertex);
+  const Eigen::Vector3d& landmark = pinned_[anchor.front()].landmark;
+  const SurfacePoint on_landmark = on_target.closest(landmark).location;
+  const PlaneFrame tangent = plane_frame(reference_.interpolated_normal(on_landmark));
+  if (!tangent.valid) return false;
+
+  std::vector<int> moving;  // the corners, then the rings about them
+  for (int v : t) {
+    const bool vertex_anchor = held(v) && pinned_[pin_index_[v]].bary == 1.0;
+    if (!vertex_anchor && !held(v) && !is_free(v)) return false;  // a corner another anchor holds
+    if (!vertex_anchor) moving.push_back(v);
+  }
+  std::vector<int> best_moving;
+  std::vector<Image> best;
+  double best_drop = 0.0;
+  for (int rings = 0; rings <= kLayRings; ++rings) {
+    if (rings > 0) add_free_ring(moving);
+    const std::vector<int> around = faces_about(moving);
+    const FoldTally before = tally(around);
+    std::vector<Image> start, lay(moving.size());
+    for (int v : moving) start.push_back(image_of(v));
+    for (const double scale : {1.0, 0.7, 0.5, 0.35}) {
+      for (int turn = 0; turn < kLayAngles; ++turn) {
+        const double angle = 2.0 * std::numbers::pi * turn / kLayAngles;
+        const Eigen::Matrix2d rotation = scale * Eigen::Rotation2Dd(angle).toRotationMatrix();
+        bool within = true;
+        for (std::size_t m = 0; m < moving.size(); ++m) {
+          const Eigen::Vector2d offset = rotation * (flat(moving[m]) - landmark_flat);
+          const std::optional<SurfacePoint> there =
+              walk_on_surface(target_, on_landmark, offset.x() * tangent.u + offset.y() * tangent.v);
+          if (!there) {
+            within = false;
+            break;
+          }
+          lay[m] = {*there, position(target_, *there), reference_.interpolated_normal(*there)};
+          within = within && (held(moving[m]) || within_slack(moving[m], lay[m].position));
+        }
+        if (!within) continue;
+        for (std::size_t m = 0; m < moving.size(); ++m) place(moving[m], lay[m]);
+        const FoldTally after = tally(around);
+        for (std::size_t m = 0; m < moving.size(); ++m) place(moving[m], start[m]);
+        if (after.folds_more_than(before) || !(before.energy - after.energy > best_drop)) continue;
+        best_drop = before.energy - after.energy;
+        best_moving = moving;
+        best = lay;
+      }
+    }
+  }
+  for (std::size_t m = 0; m < best_moving.size(); ++m) {
+    place(best_moving[m], best[m]);
+    moved_[best_moving[m]] = 1;
+  }
+  return !best.empty();
+}
+
+// One try of open_remaining_folds for vertex v.
+bool MapOptimizer::move_towards_ring_centroid(int v, const ClosestPointIndex& on_target) {
+  const std::vector<Incidence>& ring = incidences_[v];
+  std::vector<FaceReferences> references(ring.size());
+  for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face);
+  const FaceValue before = ring_value(v, references, positions_[v]);
+  const auto strict_in_ring = [&](const SurfacePoint& at, const Eigen::Vector3d& at_position) {
+    int folded = 0;
+    for (const Incidence& in : ring) folded += strictly_folded(in.face, v, at, at_position);
+    return folded;
+  };
+  const int strict_before = strict_in_ring(locations_[v], positions_[v]);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  int neighbours = 0;
+  for (const Incidence& in : ring) {
+    for (int u : faces_[in.face]) {
+      if (u == v) continue;
+      centroid += positions_[u];
+      ++neighbours;
+    }
+  }
+  if (neighbours == 0) return false;
+  centroid /= neighbours;
+  // Where to try: towards the centroid, then across the far side of each folded face of the
+  // ring (v mirrored in the line through its other two corners, and three quarters of the way
+  // there), which turns that face over when the centroid lies on the wrong side of it.
+  std::vector<Eigen::Vector3d> tries;
+  for (const double fraction : {1.0, 0.5, 0.25})
+    tries.push_back(positions_[v] + fraction * (centroid - positions_[v]));
+  for (std::size_t k = 0; k < ring.size(); ++k) {
+    const int f = ring[k].face;
+    if (!face_value(f, references[k], -1, {}).against_own && !strictly_folded(f, -1, {}, {})) continue;
+    const Eigen::Vector3d& a = positions_[faces_[f][(ring[k].corner + 1) % 3]];
+    const Eigen::Vector3d& b = positions_[faces_[f][(ring[k].corner + 2) % 3]];
+    const Eigen::Vector3d along = b - a;
+    if (!(along.squaredNorm() > 0.0)) continue;
+    const Eigen::Vector3d foot = a + (positions_[v] - a).dot(along) / along.squaredNorm() * along;
+    for (const double fraction : {2.0, 1.5})
+      tries.push_back(positions_[v] + fraction * (foot - positions_[v]));
+  }
+  std::vector<FaceReferences> moved(ring.size());
+  for (const Eigen::Vector3d& goal : tries) {
+    const SurfacePoint there = on_target.closest(goal).location;
+    const Eigen::Vector3d y = position(target_, there);
+    if (!within_slack(v, y)) continue;
+    const Eigen::Vector3d there_normal = reference_.interpolated_normal(there);
+    for (std::size_t k = 0; k < ring.size(); ++k)
+      moved[k] = reference_normal(ring[k].face, v, there, there_normal);
+    const FaceValue after = ring_value(v, moved, y);
+    const int strict_after = strict_in_ring(there, y);
+    if (after.against_own > before.against_own || after.against_corners > before.against_corners ||
+        strict_after > strict_before ||
+        after.against_own + strict_after >= before.against_own + strict_before ||
+        !(after.energy < before.energy))
+      continue;
+    locations_[v] = there;
+    positions_[v] = y;
+    normals_[v] = there_normal;
+    moved_[v] = 1;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace xparam::map_optimizer

@@ -1,0 +1,259 @@
+#pragma once
+/// \file
+/// The optimizer behind optimize_map (map/map_optimization.h, where the method is described), for
+/// its two translation units only: the sweeps (map/map_optimization.cpp) and the moves of a few
+/// vertices at once outside them (map/map_local_moves.cpp: opening the folds the sweeps leave,
+/// and the anchors that lie inside faces).
+
+#include "core/closest_point.h"
+#include "core/mesh.h"
+#include "core/surface_point.h"
+#include "map/map_optimization.h"
+#include "map/remesh_quality.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+namespace xparam::map_optimizer {
+
+// An orthonormal frame of the plane normal to `normal`, right-handed with it.
+struct PlaneFrame {
+  Eigen::Vector3d u = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  bool valid = false;
+  bool against_own = false;      // chord_edges: the triangle does not face along FaceReferences::own
+  bool against_corners = false;  // nor along FaceReferences::corners
+};
+
+inline PlaneFrame plane_frame(const Eigen::Vector3d& normal) {
+  PlaneFrame frame;
+  const double length = normal.norm();
+  if (!(length > 0.0) || !std::isfinite(length)) return frame;
+  const Eigen::Vector3d n = normal / length;
+  const Eigen::Vector3d helper = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  frame.u = n.cross(helper).normalized();
+  frame.v = n.cross(frame.u);
+  frame.valid = true;
+  return frame;
+}
+
+// The directions a remesh face's image must face: the remesh's reference normal (its own fold
+// count, map/remesh_quality.h) and the sum of the normals of the target faces under its
+// corners (only a face facing away from that sum can be folded by the strict count,
+// RemeshQualityResult::strictly_folded_faces).
+struct FaceReferences {
+  Eigen::Vector3d own = Eigen::Vector3d::Zero();
+  Eigen::Vector3d corners = Eigen::Vector3d::Zero();
+};
+
+// A template face where a vertex sits: the face and the vertex's corner in it.
+struct Incidence {
+  int face = 0;
+  int corner = 0;
+};
+
+// An uncovered target vertex pulling the remesh point nearest to it (on one remesh face, at
+// fixed barycentrics until the next refresh) towards itself.
+struct CoveragePull {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // the target vertex
+  Eigen::Vector3d bary = Eigen::Vector3d::Zero();   // on the remesh face, faces_ corner order
+  double weight = 0.0;                              // coverage_weight times its share of the target's area
+};
+
+// A folded face's energy (per unit weight): finite, so a folded face
+// neither freezes its vertices nor hides the rest of its ring's energy, and far above any
+// unfolded face's, so opening it pays and folding one never does.
+constexpr double kFoldedFaceEnergy = 1e6;
+
+// One optimization of one map: built from the start, run once.
+class MapOptimizer {
+ public:
+  MapOptimizer(const Mesh& source, const std::vector<std::array<int, 3>>& faces, const Mesh& target,
+               std::vector<SurfacePoint> locations, const std::vector<PinnedVertex>& pinned,
+               const MapOptimizationSettings& settings);
+
+  MapOptimizationResult run();
+
+ private:
+  // The sweeps and the energy (map/map_optimization.cpp).
+
+  // Whether face f is folded by the strict count (RemeshQualityResult::strictly_folded_faces) or
+  // collapsed, with `moved` (if >= 0) at `at`, `at_position` in 3-D.
+  bool strictly_folded(int f, int moved, const SurfacePoint& at, const Eigen::Vector3d& at_position) const;
+
+  // One sweep over the free vertices that may move (they or a neighbour moved in the last
+  // sweep), a colour at a time. Returns whether any vertex moved.
+  bool sweep();
+
+  // Rest shapes: each template face's inverse edge matrix in a frame of its own plane, divided
+  // by the template-to-target scale, and its share of the template's area.
+  void measure_template(const Mesh& source);
+
+  // Greedy colouring of the free vertices in index order: no two of a colour share a face.
+  void colour_free_vertices();
+
+  bool is_free(int v) const { return pin_index_[v] < 0 || pinned_[pin_index_[v]].slack > 0.0; }
+
+  // The face's references at the current images, with `moved` (if >= 0) at `at`, where the
+  // target's interpolated normal is `at_normal`.
+  FaceReferences reference_normal(int f, int moved = -1, const SurfacePoint& at = {},
+                                  const Eigen::Vector3d& at_normal = Eigen::Vector3d::Zero()) const;
+
+  // The Jacobian of face f's map (see chord_edges), with `moved` (if >= 0) at `at`; `frame`
+  // receives the image's frame (invalid when the image is collapsed or edge-on).
+  Eigen::Matrix2d jacobian(int f, const FaceReferences& reference, int moved, const Eigen::Vector3d& at,
+                           PlaneFrame& frame) const;
+
+  struct FaceValue {
+    double energy = 0.0;      // weighted
+    bool folded = false;      // against either reference, collapsed or edge-on
+    int against_own = 0;      // 1 when folded against the remesh's own reference normal (or collapsed)
+    int against_corners = 0;  // 1 when folded against the corners' target faces (or collapsed)
+  };
+
+  // Face f is folded for the optimizer when its image is folded, collapsed or edge-on against
+  // either reference (chord_edges).
+  FaceValue face_value(int f, const FaceReferences& reference, int moved, const Eigen::Vector3d& at) const;
+
+  double total_coverage_energy() const;
+
+  // The coverage pulls on face f, with `moved` (if >= 0) at `at`.
+  double coverage_energy(int f, int moved, const Eigen::Vector3d& at) const;
+
+  // d(coverage energy of face f)/d(position of its corner `corner`), `moved` at `at`.
+  Eigen::Vector3d coverage_gradient(int f, int corner, int moved, const Eigen::Vector3d& at) const;
+
+  // Each target vertex's share of the target's area, and the coverage margin.
+  void measure_target_areas();
+
+  // Finds, for every target vertex farther than the margin from the remesh, the remesh point
+  // nearest to it.
+  void refresh_coverage();
+
+  double total_energy() const;
+
+  // The energy per template area over the faces that do not fold.
+  double mean_unfolded_energy() const;
+
+  int count_folded() const;
+
+  // Energy of v's faces with v's image at `at` (`references` the faces' references there), and
+  // how many are folded against each reference (`folded` unset).
+  FaceValue ring_value(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at) const;
+
+  // d(ring energy)/d(v's image) in 3-D, the reference normals held; folded faces contribute
+  // nothing (their energy is constant).
+  Eigen::Vector3d ring_gradient(int v, const std::vector<FaceReferences>& references,
+                                const Eigen::Vector3d& at) const;
+
+  bool within_slack(int v, const Eigen::Vector3d& at) const;
+
+  // One Newton step of v's image in the plane of its target face, walked on the surface, with
+  // backtracking until its faces' energy falls and no more of them fold. Returns whether the
+  // image moved.
+  bool move_vertex(int v);
+
+  // Moves of a few vertices at once outside the sweeps (map/map_local_moves.cpp).
+
+  // Folds the sweeps leave where no descent step of one vertex opens them (a tiny face
+  // across a sharp crease of the target, an ear's rim): each free corner of a face folded by the
+  // remesh's own count or the strict one, in vertex order, tries the target point nearest to the
+  // centroid of its neighbours' images, then the points halfway and a quarter of the way there,
+  // then across the far side of each folded face of its ring (move_towards_ring_centroid).
+  // A try is taken when it leaves fewer of the corner's faces folded by those two counts
+  // together, none more by either or against the optimizer's second reference, and lowers their
+  // energy. Passes repeat while one opens a fold, at most kFoldPasses. Returns whether any corner
+  // moved.
+  bool open_remaining_folds();
+
+  // Whether face f is folded by the remesh's own count or the strict one.
+  bool folded_by_either_count(int f) const;
+
+  // The pins (indices into pinned_) of an anchor whose landmark lies in face f (or on its
+  // boundary) and that holds one of its corners where it is; empty when there is none.
+  std::vector<int> held_anchor_of(int f) const;
+
+  // An anchor inside a face holds the face's corners where the layout's map put them, and there
+  // the landmark's point of the face (the landmark's barycentrics of the corners' images) can lie
+  // well off the landmark where that map is squeezed about the anchor (up to 2.7 cm on FAUST's
+  // scan landmarks). The corners move together by the miss (or half or a quarter of it), alone or
+  // with the free vertices up to kLayRings rings about them, each walked along the target, while
+  // that shortens the miss and folds none of the faces about them more (by either reference or
+  // the strict count), a few times. The sweeps then relax what was dragged.
+  void centre_in_face_anchors();
+
+  // Moves `vertices` by `step`, each walked along the target, when that shortens `miss` and folds
+  // none of the faces about them more; returns whether they moved.
+  bool drag(const std::vector<int>& vertices, const Eigen::Vector3d& step,
+            const std::function<double()>& miss);
+
+  // Adds to `vertices` the free vertices that share a face with one of them.
+  void add_free_ring(std::vector<int>& vertices) const;
+
+  // Where a vertex's image is.
+  struct Image {
+    SurfacePoint location;
+    Eigen::Vector3d position, normal;
+  };
+  Image image_of(int v) const { return {locations_[v], positions_[v], normals_[v]}; }
+  void place(int v, const Image& image);
+
+  // The faces about `vertices`, ascending.
+  std::vector<int> faces_about(const std::vector<int>& vertices) const;
+
+  // The energy of some faces and how many are folded by each count.
+  struct FoldTally {
+    double energy = 0.0;
+    int against_own = 0;
+    int against_corners = 0;
+    int strict = 0;
+    bool folds_more_than(const FoldTally& other) const {
+      return against_own > other.against_own || against_corners > other.against_corners ||
+             strict > other.strict;
+    }
+  };
+  FoldTally tally(const std::vector<int>& faces) const;
+
+  // Lays face f again about the landmark of `anchor` (its pins, held_anchor_of) with the
+  // template's neighbourhood of it: the face's corners, alone and with the free vertices up to
+  // kLayRings rings about them, flattened into the face's plane on the template at the
+  // template-to-target scale (and at 0.7, 0.5, 0.35 of it: a squeezed spot), the landmark's point
+  // of the face on the landmark, turned to each of kLayAngles angles in the target's tangent plane
+  // there, each vertex then walked there along the target from the landmark (a closest point
+  // could land on the far side of a thin ear); vertices another anchor holds stay. Of the lays
+  // that fold no more of the faces about them (by either reference or the strict count) and lower
+  // their energy, the one that lowers it most is taken. Returns whether one was.
+  bool lay_anchor_face_again(int f, const std::vector<int>& anchor, const ClosestPointIndex& on_target);
+
+  // One try of open_remaining_folds for vertex v.
+  bool move_towards_ring_centroid(int v, const ClosestPointIndex& on_target);
+
+  const std::vector<std::array<int, 3>>& faces_;
+  const Mesh& target_;
+  const RemeshReference reference_;
+  const MapOptimizationSettings settings_;
+  std::vector<SurfacePoint> locations_;
+  std::vector<Eigen::Vector3d> positions_;
+  std::vector<Eigen::Vector3d> normals_;  // the target's interpolated normal at each image
+  // Whether a sweep's step must fold no face more by the strict count either (the sweeps after
+  // the openings: they relax the rings moved and must not trade an opened fold for a strict one).
+  bool keep_strict_folds_ = false;
+  std::vector<Eigen::Vector3d> template_positions_;
+  double template_scale_ = 1.0;  // template-to-target: sqrt(target area / template area)
+  std::vector<Eigen::Matrix2d> rest_inverse_;
+  std::vector<double> weight_;
+  std::vector<std::vector<Incidence>> incidences_;
+  std::vector<int> pin_index_;  // per vertex: its index in pinned_, or -1
+  std::vector<PinnedVertex> pinned_;
+  std::vector<std::vector<int>> colours_;
+  std::vector<char> moved_;                       // per vertex: whether it moved in the last sweep
+  std::vector<double> target_vertex_share_;       // per target vertex: its share of the target's area
+  double coverage_margin_ = 0.0;                  // gap (target units) a target vertex may have for free
+  std::vector<std::vector<CoveragePull>> pulls_;  // per template face; empty when coverage is off
+};
+
+}  // namespace xparam::map_optimizer
