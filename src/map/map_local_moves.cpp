@@ -20,6 +20,9 @@ constexpr int kFoldPasses = 3;
 // Steps centre_in_face_anchors takes, at most.
 constexpr int kCentringRounds = 3;
 
+// Halvings of a step slide_in_face_anchors tries.
+constexpr int kSlideTries = 10;
+
 // Angles lay_anchor_face_again tries, evenly spaced, and how many rings about the face it lays
 // with it at most.
 constexpr int kLayAngles = 32;
@@ -27,15 +30,6 @@ constexpr int kLayRings = 3;
 
 }  // namespace
 
-// Folds the sweeps leave where no descent step of one vertex opens them (a tiny face
-// across a sharp crease of the target, an ear's rim): each free corner of a face folded by the
-// remesh's own count or the strict one, in vertex order, tries the target point nearest to the
-// centroid of its neighbours' images, then the points halfway and a quarter of the way there,
-// then across the far side of each folded face of its ring (move_towards_ring_centroid).
-// A try is taken when it leaves fewer of the corner's faces folded by those two counts
-// together, none more by either or against the optimizer's second reference, and lowers their
-// energy. Passes repeat while one opens a fold, at most kFoldPasses. Returns whether any corner
-// moved.
 bool MapOptimizer::open_remaining_folds() {
   std::optional<ClosestPointIndex> on_target;
   bool any = false;
@@ -69,13 +63,11 @@ bool MapOptimizer::folded_by_either_count(int f) const {
   return face_value(f, reference_normal(f), -1, {}).against_own || strictly_folded(f, -1, {}, {});
 }
 
-// The pins (indices into pinned_) of an anchor whose landmark lies in face f (or on its
-// boundary) and that holds one of its corners where it is; empty when there is none.
 std::vector<int> MapOptimizer::held_anchor_of(int f) const {
   const auto& t = faces_[f];
   for (int v : t) {
     const int pin = pin_index_[v];
-    if (pin < 0 || pinned_[pin].slack > 0.0) continue;
+    if (pin < 0 || is_free(v)) continue;
     std::vector<int> pins;
     for (int k = 0; k < static_cast<int>(pinned_.size()); ++k) {
       const bool same = k == pin || (pinned_[pin].anchor >= 0 && pinned_[k].anchor == pinned_[pin].anchor);
@@ -88,35 +80,44 @@ std::vector<int> MapOptimizer::held_anchor_of(int f) const {
   return {};
 }
 
-// An anchor inside a face holds the face's corners where the layout's map put them, and there
-// the landmark's point of the face (the landmark's barycentrics of the corners' images) can lie
-// well off the landmark where that map is squeezed about the anchor (up to 2.7 cm on FAUST's
-// scan landmarks). The corners move together by the miss (or half or a quarter of it), alone or
-// with the free vertices up to kLayRings rings about them, each walked along the target, while
-// that shortens the miss and folds none of the faces about them more (by either reference or
-// the strict count), a few times. The sweeps then relax what was dragged.
-void MapOptimizer::centre_in_face_anchors() {
+std::vector<std::vector<int>> MapOptimizer::in_face_anchors() const {
   std::map<int, std::vector<int>> pins_by_anchor;
   for (int k = 0; k < static_cast<int>(pinned_.size()); ++k) {
-    if (pinned_[k].anchor >= 0 && pinned_[k].bary < 1.0 && pinned_[k].slack == 0.0)
-      pins_by_anchor[pinned_[k].anchor].push_back(k);
+    if (pinned_[k].anchor >= 0 && pinned_[k].bary < 1.0) pins_by_anchor[pinned_[k].anchor].push_back(k);
   }
-  for (const auto& [anchor, pins] : pins_by_anchor) {
-    std::vector<int> corners;
-    for (int k : pins) corners.push_back(pinned_[k].vertex);
-    const auto miss = [&] {
-      Eigen::Vector3d point = Eigen::Vector3d::Zero();
-      for (int k : pins) point += pinned_[k].bary * positions_[pinned_[k].vertex];
-      return Eigen::Vector3d(pinned_[pins.front()].landmark - point);
-    };
+  std::vector<std::vector<int>> anchors;
+  for (auto& [anchor, pins] : pins_by_anchor) anchors.push_back(std::move(pins));
+  return anchors;
+}
+
+std::vector<int> MapOptimizer::vertices_of(const std::vector<int>& pins) const {
+  std::vector<int> vertices;
+  for (int k : pins) vertices.push_back(pinned_[k].vertex);
+  return vertices;
+}
+
+Eigen::Vector3d MapOptimizer::landmark_miss(const std::vector<int>& pins) const {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  for (int k : pins) point += pinned_[k].bary * positions_[pinned_[k].vertex];
+  return pinned_[pins.front()].landmark - point;
+}
+
+void MapOptimizer::centre_in_face_anchors() {
+  for (const std::vector<int>& pins : in_face_anchors()) {
+    const std::vector<int> corners = vertices_of(pins);
+    const double slack = pinned_[pins.front()].slack;
     for (int round = 0; round < kCentringRounds; ++round) {
-      const Eigen::Vector3d full = miss();
+      const Eigen::Vector3d full = landmark_miss(pins);
+      if (full.norm() <= slack) break;
+      const auto shorter = [&](const FoldTally& before, const FoldTally& after) {
+        return landmark_miss(pins).norm() < full.norm() && !after.folds_more_than(before);
+      };
       bool stepped = false;
       for (const double fraction : {1.0, 0.5, 0.25}) {
         std::vector<int> dragged = corners;
         for (int rings = 0; rings <= kLayRings && !stepped; ++rings) {
           if (rings > 0) add_free_ring(dragged);
-          stepped = drag(dragged, fraction * full, [&] { return miss().norm(); });
+          stepped = drag(dragged, fraction * full, shorter);
         }
         if (stepped) break;
       }
@@ -125,13 +126,43 @@ void MapOptimizer::centre_in_face_anchors() {
   }
 }
 
-// Moves `vertices` by `step`, each walked along the target, when that shortens `miss` and folds
-// none of the faces about them more; returns whether they moved.
+bool MapOptimizer::slide_in_face_anchors() {
+  bool any = false;
+  for (const std::vector<int>& pins : in_face_anchors()) {
+    const double slack = pinned_[pins.front()].slack;
+    if (!(slack > 0.0)) continue;
+    const std::vector<int> corners = vertices_of(pins);
+    // d(energy)/d(a translation of every corner) is the sum of each corner's gradient.
+    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+    double edges = 0.0;
+    for (std::size_t c = 0; c < corners.size(); ++c) {
+      std::vector<FaceReferences> references;
+      for (const Incidence& in : incidences_[corners[c]]) references.push_back(reference_normal(in.face));
+      gradient += ring_gradient(corners[c], references, positions_[corners[c]]);
+      edges += (positions_[corners[c]] - positions_[corners[(c + 1) % corners.size()]]).norm();
+    }
+    const Eigen::Vector3d normal = reference_.face_normal(locations_[corners.front()].face);
+    const Eigen::Vector3d downhill = -(gradient - gradient.dot(normal) * normal);
+    if (!(downhill.norm() > 0.0) || !(edges > 0.0)) continue;
+    const auto lower = [&](const FoldTally& before, const FoldTally& after) {
+      return after.energy < before.energy && !after.folds_more_than(before) &&
+             landmark_miss(pins).norm() <= slack;
+    };
+    Eigen::Vector3d step = downhill.normalized() * 0.5 * edges / static_cast<double>(corners.size());
+    for (int tries = 0; tries < kSlideTries; ++tries, step *= 0.5) {
+      if (!drag(corners, step, lower)) continue;
+      for (int v : corners) moved_[v] = 1;
+      any = true;
+      break;
+    }
+  }
+  return any;
+}
+
 bool MapOptimizer::drag(const std::vector<int>& vertices, const Eigen::Vector3d& step,
-                        const std::function<double()>& miss) {
+                        const std::function<bool(const FoldTally&, const FoldTally&)>& take) {
   const std::vector<int> around = faces_about(vertices);
   const FoldTally before = tally(around);
-  const double miss_before = miss();
   std::vector<Image> start, dragged;
   for (int v : vertices) {
     const std::optional<SurfacePoint> there = walk_on_surface(target_, locations_[v], step);
@@ -140,12 +171,11 @@ bool MapOptimizer::drag(const std::vector<int>& vertices, const Eigen::Vector3d&
     dragged.push_back({*there, position(target_, *there), reference_.interpolated_normal(*there)});
   }
   for (std::size_t k = 0; k < vertices.size(); ++k) place(vertices[k], dragged[k]);
-  if (miss() < miss_before && !tally(around).folds_more_than(before)) return true;
+  if (take(before, tally(around))) return true;
   for (std::size_t k = 0; k < vertices.size(); ++k) place(vertices[k], start[k]);
   return false;
 }
 
-// Adds to `vertices` the free vertices that share a face with one of them.
 void MapOptimizer::add_free_ring(std::vector<int>& vertices) const {
   const std::size_t inner = vertices.size();
   for (std::size_t k = 0; k < inner; ++k) {
@@ -163,7 +193,6 @@ void MapOptimizer::place(int v, const Image& image) {
   normals_[v] = image.normal;
 }
 
-// The faces about `vertices`, ascending.
 std::vector<int> MapOptimizer::faces_about(const std::vector<int>& vertices) const {
   std::vector<int> faces;
   for (int v : vertices) {
@@ -186,15 +215,6 @@ MapOptimizer::FoldTally MapOptimizer::tally(const std::vector<int>& faces) const
   return sum;
 }
 
-// Lays face f again about the landmark of `anchor` (its pins, held_anchor_of) with the
-// template's neighbourhood of it: the face's corners, alone and with the free vertices up to
-// kLayRings rings about them, flattened into the face's plane on the template at the
-// template-to-target scale (and at 0.7, 0.5, 0.35 of it: a squeezed spot), the landmark's point
-// of the face on the landmark, turned to each of kLayAngles angles in the target's tangent plane
-// there, each vertex then walked there along the target from the landmark (a closest point
-// could land on the far side of a thin ear); vertices another anchor holds stay. Of the lays
-// that fold no more of the faces about them (by either reference or the strict count) and lower
-// their energy, the one that lowers it most is taken. Returns whether one was.
 bool MapOptimizer::lay_anchor_face_again(int f, const std::vector<int>& anchor,
                                          const ClosestPointIndex& on_target) {
   const auto& t = faces_[f];
@@ -265,7 +285,6 @@ bool MapOptimizer::lay_anchor_face_again(int f, const std::vector<int>& anchor,
   return !best.empty();
 }
 
-// One try of open_remaining_folds for vertex v.
 bool MapOptimizer::move_towards_ring_centroid(int v, const ClosestPointIndex& on_target) {
   const std::vector<Incidence>& ring = incidences_[v];
   std::vector<FaceReferences> references(ring.size());

@@ -97,7 +97,8 @@ MapOptimizationResult MapOptimizer::run() {
   std::fill(moved_.begin(), moved_.end(), 1);
   double coverage = total_coverage_energy();
   for (int since_refresh = 0, sweeps_left = settings_.max_sweeps; sweeps_left > 0; --sweeps_left) {
-    const bool any_moved = sweep();
+    bool any_moved = sweep();
+    any_moved = slide_in_face_anchors() || any_moved;
     ++result.sweeps;
     const double was = energy;
     const double coverage_was = coverage;
@@ -150,8 +151,6 @@ MapOptimizationResult MapOptimizer::run() {
   return result;
 }
 
-// Whether face f is folded by the strict count (RemeshQualityResult::strictly_folded_faces) or
-// collapsed, with `moved` (if >= 0) at `at`, `at_position` in 3-D.
 bool MapOptimizer::strictly_folded(int f, int moved, const SurfacePoint& at,
                                    const Eigen::Vector3d& at_position) const {
   const auto& t = faces_[f];
@@ -164,8 +163,6 @@ bool MapOptimizer::strictly_folded(int f, int moved, const SurfacePoint& at,
          reference_.opposes_every_corner(normal, {location(t[0]), location(t[1]), location(t[2])});
 }
 
-// One sweep over the free vertices that may move (they or a neighbour moved in the last
-// sweep), a colour at a time. Returns whether any vertex moved.
 bool MapOptimizer::sweep() {
   std::vector<char> active(moved_.size(), 0);
   for (std::size_t v = 0; v < moved_.size(); ++v) {
@@ -184,8 +181,6 @@ bool MapOptimizer::sweep() {
   return std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
 }
 
-// Rest shapes: each template face's inverse edge matrix in a frame of its own plane, divided
-// by the template-to-target scale, and its share of the template's area.
 void MapOptimizer::measure_template(const Mesh& source) {
   const int n_faces = static_cast<int>(faces_.size());
   rest_inverse_.resize(n_faces);
@@ -213,7 +208,6 @@ void MapOptimizer::measure_template(const Mesh& source) {
   }
 }
 
-// Greedy colouring of the free vertices in index order: no two of a colour share a face.
 void MapOptimizer::colour_free_vertices() {
   const int n_vertices = static_cast<int>(locations_.size());
   std::vector<int> colour(n_vertices, -1);
@@ -235,8 +229,6 @@ void MapOptimizer::colour_free_vertices() {
   }
 }
 
-// The face's references at the current images, with `moved` (if >= 0) at `at`, where the
-// target's interpolated normal is `at_normal`.
 FaceReferences MapOptimizer::reference_normal(int f, int moved, const SurfacePoint& at,
                                               const Eigen::Vector3d& at_normal) const {
   const auto& t = faces_[f];
@@ -251,8 +243,6 @@ FaceReferences MapOptimizer::reference_normal(int f, int moved, const SurfacePoi
                                                              reference_.face_normal(corners[2]->face)};
 }
 
-// The Jacobian of face f's map (see chord_edges), with `moved` (if >= 0) at `at`; `frame`
-// receives the image's frame (invalid when the image is collapsed or edge-on).
 Eigen::Matrix2d MapOptimizer::jacobian(int f, const FaceReferences& reference, int moved,
                                        const Eigen::Vector3d& at, PlaneFrame& frame) const {
   const auto& t = faces_[f];
@@ -261,8 +251,6 @@ Eigen::Matrix2d MapOptimizer::jacobian(int f, const FaceReferences& reference, i
          rest_inverse_[f];
 }
 
-// Face f is folded for the optimizer when its image is folded, collapsed or edge-on against
-// either reference (chord_edges).
 MapOptimizer::FaceValue MapOptimizer::face_value(int f, const FaceReferences& reference, int moved,
                                                  const Eigen::Vector3d& at) const {
   PlaneFrame frame;
@@ -283,7 +271,6 @@ double MapOptimizer::total_coverage_energy() const {
   return sum;
 }
 
-// The coverage pulls on face f, with `moved` (if >= 0) at `at`.
 double MapOptimizer::coverage_energy(int f, int moved, const Eigen::Vector3d& at) const {
   if (pulls_.empty() || pulls_[f].empty()) return 0.0;
   const auto& t = faces_[f];
@@ -298,7 +285,6 @@ double MapOptimizer::coverage_energy(int f, int moved, const Eigen::Vector3d& at
   return energy;
 }
 
-// d(coverage energy of face f)/d(position of its corner `corner`), `moved` at `at`.
 Eigen::Vector3d MapOptimizer::coverage_gradient(int f, int corner, int moved,
                                                 const Eigen::Vector3d& at) const {
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
@@ -317,7 +303,6 @@ Eigen::Vector3d MapOptimizer::coverage_gradient(int f, int corner, int moved,
   return gradient;
 }
 
-// Each target vertex's share of the target's area, and the coverage margin.
 void MapOptimizer::measure_target_areas() {
   const double area = reference_.target_area();
   target_vertex_share_ = vertex_areas(target_);
@@ -325,8 +310,6 @@ void MapOptimizer::measure_target_areas() {
   coverage_margin_ = 0.5 * kUncoveredGap * std::sqrt(area);
 }
 
-// Finds, for every target vertex farther than the margin from the remesh, the remesh point
-// nearest to it.
 void MapOptimizer::refresh_coverage() {
   pulls_.clear();
   if (!(settings_.coverage_weight > 0.0)) return;
@@ -353,7 +336,6 @@ double MapOptimizer::total_energy() const {
   return sum;
 }
 
-// The energy per template area over the faces that do not fold.
 double MapOptimizer::mean_unfolded_energy() const {
   double energy = 0.0;
   double weight = 0.0;
@@ -375,8 +357,6 @@ int MapOptimizer::count_folded() const {
   return folded;
 }
 
-// Energy of v's faces with v's image at `at` (`references` the faces' references there), and
-// how many are folded against each reference (`folded` unset).
 MapOptimizer::FaceValue MapOptimizer::ring_value(int v, const std::vector<FaceReferences>& references,
                                                  const Eigen::Vector3d& at) const {
   FaceValue ring;
@@ -389,8 +369,6 @@ MapOptimizer::FaceValue MapOptimizer::ring_value(int v, const std::vector<FaceRe
   return ring;
 }
 
-// d(ring energy)/d(v's image) in 3-D, the reference normals held; folded faces contribute
-// nothing (their energy is constant).
 Eigen::Vector3d MapOptimizer::ring_gradient(int v, const std::vector<FaceReferences>& references,
                                             const Eigen::Vector3d& at) const {
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
@@ -416,9 +394,6 @@ bool MapOptimizer::within_slack(int v, const Eigen::Vector3d& at) const {
   return pin < 0 || (at - pinned_[pin].landmark).norm() <= pinned_[pin].slack;
 }
 
-// One Newton step of v's image in the plane of its target face, walked on the surface, with
-// backtracking until its faces' energy falls and no more of them fold. Returns whether the
-// image moved.
 bool MapOptimizer::move_vertex(int v) {
   const std::vector<Incidence>& ring = incidences_[v];
   if (ring.empty()) return false;

@@ -46,7 +46,10 @@
 /// anchor lies inside, all three corners held; a face round a vertex anchor whose free corners
 /// each fold another face when they move alone) is laid again: the face congruent to its
 /// template shape, its landmark point on the landmark, turned to each of 16 angles, its corners
-/// dropped onto the target, taken by the same rule. An in-face anchor's corners move only so.
+/// walked onto the target, taken by the same rule. An anchor inside a face holds the face's
+/// corners, which move only together: onto the landmark before the sweeps (dragged by the miss),
+/// laid again as above, and, with slack, after every sweep down their faces' energy while the
+/// landmark's point of the face stays within the slack.
 
 #include "core/mesh.h"
 #include "core/surface_point.h"
@@ -110,9 +113,8 @@ struct MapOptimizationResult {
 
 /// Optimize the map template -> target given by `locations` (#template V target surface
 /// points, the remesh's vertices). The faces in `faces` are the template's (vertex ids, fv
-/// order); `pinned` vertices stay where they are, or within their slack of their landmark,
-/// every other vertex moves (the corners of an in-face anchor's face only together, the face
-/// laid again about its landmark to open a fold).
+/// order); `pinned` vertices stay where they are, or within their slack of their landmark (the
+/// corners of an anchor inside a face: its point of that face), every other vertex moves.
 ///
 /// The sweeps lower the energy without folding any face that is not folded and without ever
 /// raising the energy, a folded face counting a constant that opening it lowers. So the result

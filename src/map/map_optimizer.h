@@ -96,7 +96,12 @@ class MapOptimizer {
   // Greedy colouring of the free vertices in index order: no two of a colour share a face.
   void colour_free_vertices();
 
-  bool is_free(int v) const { return pin_index_[v] < 0 || pinned_[pin_index_[v]].slack > 0.0; }
+  // Whether v moves in the sweeps: not pinned, or a vertex anchor with slack (an in-face
+  // anchor's corners move only together, map_local_moves).
+  bool is_free(int v) const {
+    const int pin = pin_index_[v];
+    return pin < 0 || (pinned_[pin].slack > 0.0 && pinned_[pin].bary == 1.0);
+  }
 
   // The face's references at the current images, with `moved` (if >= 0) at `at`, where the
   // target's interpolated normal is `at_normal`.
@@ -177,19 +182,26 @@ class MapOptimizer {
   // boundary) and that holds one of its corners where it is; empty when there is none.
   std::vector<int> held_anchor_of(int f) const;
 
+  // The anchors inside faces (or on edges): each one's pins, in anchor order.
+  std::vector<std::vector<int>> in_face_anchors() const;
+  std::vector<int> vertices_of(const std::vector<int>& pins) const;
+  // From the landmark's point of its face (its barycentrics of the corners' images) to the landmark.
+  Eigen::Vector3d landmark_miss(const std::vector<int>& pins) const;
+
   // An anchor inside a face holds the face's corners where the layout's map put them, and there
-  // the landmark's point of the face (the landmark's barycentrics of the corners' images) can lie
-  // well off the landmark where that map is squeezed about the anchor (up to 2.7 cm on FAUST's
-  // scan landmarks). The corners move together by the miss (or half or a quarter of it), alone or
-  // with the free vertices up to kLayRings rings about them, each walked along the target, while
-  // that shortens the miss and folds none of the faces about them more (by either reference or
-  // the strict count), a few times. The sweeps then relax what was dragged.
+  // the landmark's point of the face can lie well off the landmark where that map is squeezed
+  // about the anchor (up to 2.7 cm on FAUST's scan landmarks). The corners move together by the
+  // miss (or half or a quarter of it), alone or with the free vertices up to kLayRings rings about
+  // them, each walked along the target, while that shortens the miss and folds none of the faces
+  // about them more (by either reference or the strict count), a few times, until the miss is
+  // within the anchor's slack. The sweeps then relax what was dragged.
   void centre_in_face_anchors();
 
-  // Moves `vertices` by `step`, each walked along the target, when that shortens `miss` and folds
-  // none of the faces about them more; returns whether they moved.
-  bool drag(const std::vector<int>& vertices, const Eigen::Vector3d& step,
-            const std::function<double()>& miss);
+  // After each sweep, the corners of each anchor inside a face with slack move together down the
+  // gradient of their faces' energy (in the target's plane under the first corner, half their
+  // mean edge, halved until taken), when that lowers the energy, folds nothing more and keeps
+  // the landmark's point within the slack. Returns whether any moved.
+  bool slide_in_face_anchors();
 
   // Adds to `vertices` the free vertices that share a face with one of them.
   void add_free_ring(std::vector<int>& vertices) const;
@@ -217,6 +229,11 @@ class MapOptimizer {
     }
   };
   FoldTally tally(const std::vector<int>& faces) const;
+
+  // Moves `vertices` by `step`, each walked along the target, when `take` accepts the faces about
+  // them (before, after); returns whether they moved.
+  bool drag(const std::vector<int>& vertices, const Eigen::Vector3d& step,
+            const std::function<bool(const FoldTally&, const FoldTally&)>& take);
 
   // Lays face f again about the landmark of `anchor` (its pins, held_anchor_of) with the
   // template's neighbourhood of it: the face's corners, alone and with the free vertices up to

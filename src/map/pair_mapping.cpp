@@ -130,9 +130,9 @@ struct MapAttempt {
   }
 };
 
-// The template vertices an anchor holds: a vertex anchor's vertex, within `slack` of the
-// target's landmark; every corner of the face an anchor inside a face lies in, held where it is
-// (they move together only, map/map_optimization.h).
+// The template vertices an anchor holds, within its slack of the target's landmark: a vertex
+// anchor's vertex, or every corner of the face (or edge) an anchor inside it lies in, which move
+// only together (map/map_optimization.h).
 std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& anchors, const Mesh& source,
                                           const Mesh& target, const PairSettings& settings) {
   std::vector<PinnedVertex> pinned;
@@ -141,12 +141,10 @@ std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& an
     const double slack = named == settings.anchor_slack_by_name.end() ? settings.anchor_slack : named->second;
     const SurfacePoint& on_template = anchors[0].anchors[k].input_point;
     const Eigen::Vector3d landmark = position(target, anchors[1].anchors[k].input_point);
-    const int corners_used = static_cast<int>((on_template.bary.array() > 0.0).count());
     int corner = 0;
     for (VertexHandle v : source.fv_range(source.face_handle(on_template.face))) {
       const double bary = on_template.bary[corner++];
-      if (bary > 0.0)
-        pinned.push_back({v.idx(), landmark, corners_used == 1 ? slack : 0.0, static_cast<int>(k), bary});
+      if (bary > 0.0) pinned.push_back({v.idx(), landmark, slack, static_cast<int>(k), bary});
     }
   }
   return pinned;
