@@ -144,9 +144,11 @@ bool MapOptimizer::slide_in_face_anchors() {
     const Eigen::Vector3d normal = reference_.face_normal(locations_[corners.front()].face);
     const Eigen::Vector3d downhill = -(gradient - gradient.dot(normal) * normal);
     if (!(downhill.norm() > 0.0) || !(edges > 0.0)) continue;
+    // A point the drag left beyond the slack may slide too, but no farther out.
+    const double allowed = std::max(slack, landmark_miss(pins).norm());
     const auto lower = [&](const FoldTally& before, const FoldTally& after) {
       return after.energy < before.energy && !after.folds_more_than(before) &&
-             landmark_miss(pins).norm() <= slack;
+             landmark_miss(pins).norm() <= allowed;
     };
     Eigen::Vector3d step = downhill.normalized() * 0.5 * edges / static_cast<double>(corners.size());
     for (int tries = 0; tries < kSlideTries; ++tries, step *= 0.5) {

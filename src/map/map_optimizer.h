@@ -200,7 +200,8 @@ class MapOptimizer {
   // After each sweep, the corners of each anchor inside a face with slack move together down the
   // gradient of their faces' energy (in the target's plane under the first corner, half their
   // mean edge, halved until taken), when that lowers the energy, folds nothing more and keeps
-  // the landmark's point within the slack. Returns whether any moved.
+  // the landmark's point within the slack (or no farther out, where the drag left it beyond).
+  // Returns whether any moved.
   bool slide_in_face_anchors();
 
   // Adds to `vertices` the free vertices that share a face with one of them.
