@@ -68,11 +68,7 @@ std::vector<int> MapOptimizer::held_anchor_of(int f) const {
   for (int v : t) {
     const int pin = pin_index_[v];
     if (pin < 0 || is_free(v)) continue;
-    std::vector<int> pins;
-    for (int k = 0; k < static_cast<int>(pinned_.size()); ++k) {
-      const bool same = k == pin || (pinned_[pin].anchor >= 0 && pinned_[k].anchor == pinned_[pin].anchor);
-      if (same) pins.push_back(k);
-    }
+    const std::vector<int>& pins = anchor_pins_[anchor_of_pin_[pin]];
     if (std::all_of(pins.begin(), pins.end(),
                     [&](int k) { return std::find(t.begin(), t.end(), pinned_[k].vertex) != t.end(); }))
       return pins;
@@ -80,14 +76,16 @@ std::vector<int> MapOptimizer::held_anchor_of(int f) const {
   return {};
 }
 
-std::vector<std::vector<int>> MapOptimizer::in_face_anchors() const {
-  std::map<int, std::vector<int>> pins_by_anchor;
-  for (int k = 0; k < static_cast<int>(pinned_.size()); ++k) {
-    if (pinned_[k].anchor >= 0 && pinned_[k].bary < 1.0) pins_by_anchor[pinned_[k].anchor].push_back(k);
+void MapOptimizer::group_pins() {
+  std::map<int, std::vector<int>> pins_by_anchor;  // an anchor of its own keyed below 0
+  for (int k = 0; k < static_cast<int>(pinned_.size()); ++k)
+    pins_by_anchor[pinned_[k].anchor >= 0 ? pinned_[k].anchor : -1 - k].push_back(k);
+  anchor_of_pin_.resize(pinned_.size());
+  for (auto& [anchor, pins] : pins_by_anchor) {
+    for (int k : pins) anchor_of_pin_[k] = static_cast<int>(anchor_pins_.size());
+    if (anchor >= 0 && pinned_[pins.front()].bary < 1.0) in_face_anchors_.push_back(pins);
+    anchor_pins_.push_back(std::move(pins));
   }
-  std::vector<std::vector<int>> anchors;
-  for (auto& [anchor, pins] : pins_by_anchor) anchors.push_back(std::move(pins));
-  return anchors;
 }
 
 std::vector<int> MapOptimizer::vertices_of(const std::vector<int>& pins) const {
@@ -103,7 +101,7 @@ Eigen::Vector3d MapOptimizer::landmark_miss(const std::vector<int>& pins) const 
 }
 
 void MapOptimizer::centre_in_face_anchors() {
-  for (const std::vector<int>& pins : in_face_anchors()) {
+  for (const std::vector<int>& pins : in_face_anchors_) {
     const std::vector<int> corners = vertices_of(pins);
     const double slack = pinned_[pins.front()].slack;
     for (int round = 0; round < kCentringRounds; ++round) {
@@ -128,7 +126,7 @@ void MapOptimizer::centre_in_face_anchors() {
 
 bool MapOptimizer::slide_in_face_anchors() {
   bool any = false;
-  for (const std::vector<int>& pins : in_face_anchors()) {
+  for (const std::vector<int>& pins : in_face_anchors_) {
     const double slack = pinned_[pins.front()].slack;
     if (!(slack > 0.0)) continue;
     const std::vector<int> corners = vertices_of(pins);
@@ -292,12 +290,7 @@ bool MapOptimizer::move_towards_ring_centroid(int v, const ClosestPointIndex& on
   std::vector<FaceReferences> references(ring.size());
   for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face);
   const FaceValue before = ring_value(v, references, positions_[v]);
-  const auto strict_in_ring = [&](const SurfacePoint& at, const Eigen::Vector3d& at_position) {
-    int folded = 0;
-    for (const Incidence& in : ring) folded += strictly_folded(in.face, v, at, at_position);
-    return folded;
-  };
-  const int strict_before = strict_in_ring(locations_[v], positions_[v]);
+  const int strict_before = strictly_folded_in_ring(v, -1, {}, {});
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   int neighbours = 0;
   for (const Incidence& in : ring) {
@@ -335,7 +328,7 @@ bool MapOptimizer::move_towards_ring_centroid(int v, const ClosestPointIndex& on
     for (std::size_t k = 0; k < ring.size(); ++k)
       moved[k] = reference_normal(ring[k].face, v, there, there_normal);
     const FaceValue after = ring_value(v, moved, y);
-    const int strict_after = strict_in_ring(there, y);
+    const int strict_after = strictly_folded_in_ring(v, v, there, y);
     if (after.against_own > before.against_own || after.against_corners > before.against_corners ||
         strict_after > strict_before ||
         after.against_own + strict_after >= before.against_own + strict_before ||

@@ -75,6 +75,7 @@ MapOptimizer::MapOptimizer(const Mesh& source, const std::vector<std::array<int,
   pin_index_.assign(n_vertices, -1);
   for (std::size_t k = 0; k < pinned.size(); ++k) pin_index_[pinned[k].vertex] = static_cast<int>(k);
   pinned_ = pinned;
+  group_pins();
   colour_free_vertices();
   moved_.assign(n_vertices, 1);
   measure_target_areas();
@@ -389,6 +390,13 @@ Eigen::Vector3d MapOptimizer::ring_gradient(int v, const std::vector<FaceReferen
   return gradient;
 }
 
+int MapOptimizer::strictly_folded_in_ring(int v, int moved, const SurfacePoint& at,
+                                          const Eigen::Vector3d& at_position) const {
+  int folded = 0;
+  for (const Incidence& in : incidences_[v]) folded += strictly_folded(in.face, moved, at, at_position);
+  return folded;
+}
+
 bool MapOptimizer::within_slack(int v, const Eigen::Vector3d& at) const {
   const int pin = pin_index_[v];
   return pin < 0 || (at - pinned_[pin].landmark).norm() <= pinned_[pin].slack;
@@ -405,13 +413,8 @@ bool MapOptimizer::move_vertex(int v) {
   const double before = ring_before.energy;
   if (!std::isfinite(before)) return false;
   // Strictly folded faces are among those folded against their corners' target faces.
-  const auto strict_in_ring = [&](int moved, const SurfacePoint& at, const Eigen::Vector3d& at_position) {
-    int folded = 0;
-    for (const Incidence& in : ring) folded += strictly_folded(in.face, moved, at, at_position);
-    return folded;
-  };
   const int strict_before =
-      keep_strict_folds_ && ring_before.against_corners > 0 ? strict_in_ring(-1, {}, {}) : 0;
+      keep_strict_folds_ && ring_before.against_corners > 0 ? strictly_folded_in_ring(v, -1, {}, {}) : 0;
 
   // The tangent plane: the target face under the image.
   const PlaneFrame tangent = plane_frame(reference_.face_normal(here.face));
@@ -475,7 +478,7 @@ bool MapOptimizer::move_vertex(int v) {
     if (ring_after.against_own > ring_before.against_own ||
         ring_after.against_corners > ring_before.against_corners ||
         (keep_strict_folds_ && ring_after.against_corners > 0 &&
-         strict_in_ring(v, *there, y) > strict_before))
+         strictly_folded_in_ring(v, v, *there, y) > strict_before))
       continue;
     if (after < before + 1e-4 * fraction * slope) {
       locations_[v] = *there;

@@ -45,7 +45,7 @@
 /// either, and lowers their energy. A fold at an anchor that no such try opens (the face an
 /// anchor lies inside, all three corners held; a face round a vertex anchor whose free corners
 /// each fold another face when they move alone) is laid again: the face congruent to its
-/// template shape, its landmark point on the landmark, turned to each of 16 angles, its corners
+/// template shape, its landmark point on the landmark, turned to each of 32 angles, its corners
 /// walked onto the target, taken by the same rule. An anchor inside a face holds the face's
 /// corners, which move only together: onto the landmark before the sweeps (dragged by the miss),
 /// laid again as above, and, with slack, after every sweep down their faces' energy while the

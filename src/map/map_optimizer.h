@@ -157,6 +157,10 @@ class MapOptimizer {
 
   bool within_slack(int v, const Eigen::Vector3d& at) const;
 
+  // How many of v's faces are strictly folded (strictly_folded), with `moved` (if >= 0) at `at`.
+  int strictly_folded_in_ring(int v, int moved, const SurfacePoint& at,
+                              const Eigen::Vector3d& at_position) const;
+
   // One Newton step of v's image in the plane of its target face, walked on the surface, with
   // backtracking until its faces' energy falls and no more of them fold. Returns whether the
   // image moved.
@@ -182,8 +186,8 @@ class MapOptimizer {
   // boundary) and that holds one of its corners where it is; empty when there is none.
   std::vector<int> held_anchor_of(int f) const;
 
-  // The anchors inside faces (or on edges): each one's pins, in anchor order.
-  std::vector<std::vector<int>> in_face_anchors() const;
+  // Groups the pins by anchor (anchor_pins_, anchor_of_pin_, in_face_anchors_).
+  void group_pins();
   std::vector<int> vertices_of(const std::vector<int>& pins) const;
   // From the landmark's point of its face (its barycentrics of the corners' images) to the landmark.
   Eigen::Vector3d landmark_miss(const std::vector<int>& pins) const;
@@ -267,6 +271,9 @@ class MapOptimizer {
   std::vector<std::vector<Incidence>> incidences_;
   std::vector<int> pin_index_;  // per vertex: its index in pinned_, or -1
   std::vector<PinnedVertex> pinned_;
+  std::vector<std::vector<int>> anchor_pins_;      // per anchor: its pins (indices into pinned_)
+  std::vector<int> anchor_of_pin_;                 // per pin: its anchor's index in anchor_pins_
+  std::vector<std::vector<int>> in_face_anchors_;  // the pins of each anchor inside a face (or edge)
   std::vector<std::vector<int>> colours_;
   std::vector<char> moved_;                       // per vertex: whether it moved in the last sweep
   std::vector<double> target_vertex_share_;       // per target vertex: its share of the target's area

@@ -254,6 +254,14 @@ TEST(MapOptimization, AFoldLeftAfterTheSweepsIsOpenedTowardsItsRingsCentroid) {
   EXPECT_LT((result.positions[thrown] - position(pair.target, pair.truth[thrown])).norm(), pair.mean_edge);
 }
 
+// The point at `bary` of the triangle `positions` gives `corners`.
+Eigen::Vector3d point_in_face(const std::vector<Eigen::Vector3d>& positions,
+                              const std::array<int, 3>& corners, const Eigen::Vector3d& bary) {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  for (int c = 0; c < 3; ++c) point += bary[c] * positions[corners[c]];
+  return point;
+}
+
 // `pair`'s pins but those at `corners` (a template face's), then an anchor inside that face at
 // `bary`, whose landmark (returned) is where the true map puts that point: on the target, whose
 // face there is the template's, moved.
@@ -291,9 +299,7 @@ TEST(MapOptimization, TheFaceAnInFaceAnchorFoldsIsLaidAgainAboutItsLandmark) {
   EXPECT_EQ(laid.flipped_after, 0);
   EXPECT_EQ(folded(pair.faces, laid.locations, pair.target), 0);
   EXPECT_LT(laid.energy.back(), laid.energy.front());
-  Eigen::Vector3d landmark_image = Eigen::Vector3d::Zero();
-  for (int c = 0; c < 3; ++c) landmark_image += bary[c] * laid.positions[corners[c]];
-  EXPECT_LT((landmark_image - landmark).norm(), 0.05 * pair.mean_edge);
+  EXPECT_LT((point_in_face(laid.positions, corners, bary) - landmark).norm(), 0.05 * pair.mean_edge);
   for (int c = 0; c < 3; ++c) {
     const Eigen::Vector3d truth = position(pair.target, pair.truth[corners[c]]);
     EXPECT_LT((laid.positions[corners[c]] - truth).norm(), 0.3 * pair.mean_edge);
@@ -331,9 +337,7 @@ TEST(MapOptimization, AnInFaceAnchorsPointIsBroughtOntoItsLandmark) {
   }
   for (int v : slid) pair.start[v] = walk_on_surface(pair.target, pair.truth[v], slide).value();
   const auto landmark_miss = [&](const std::vector<Eigen::Vector3d>& positions) {
-    Eigen::Vector3d point = Eigen::Vector3d::Zero();
-    for (int c = 0; c < 3; ++c) point += bary[c] * positions[corners[c]];
-    return (point - landmark).norm();
+    return (point_in_face(positions, corners, bary) - landmark).norm();
   };
   std::vector<Eigen::Vector3d> start_positions;
   for (const SurfacePoint& p : pair.start) start_positions.push_back(position(pair.target, p));
@@ -363,9 +367,7 @@ TEST(MapOptimization, AnInFaceAnchorWithSlackStaysWithinItNearerTheTruth) {
       walk_on_surface(pair.target, on_truth, 0.3 * pair.mean_edge * normal.unitOrthogonal()).value());
   for (std::size_t k = pinned.size() - 3; k < pinned.size(); ++k) pinned[k].landmark = off;
   const auto point_of = [&](const MapOptimizationResult& result) {
-    Eigen::Vector3d point = Eigen::Vector3d::Zero();
-    for (int c = 0; c < 3; ++c) point += bary[c] * result.positions[corners[c]];
-    return point;
+    return point_in_face(result.positions, corners, bary);
   };
   MapOptimizationSettings settings;
   settings.tolerance = 1e-9;
