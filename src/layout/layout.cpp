@@ -29,7 +29,41 @@ std::vector<char> chain_edge_mask(const LayoutSide& side) {
   return mask;
 }
 
+// Whether two sides hold the same mesh (positions, faces in order, patches), anchor vertices
+// and chains.
+bool same_side(const LayoutSide& a, const LayoutSide& b) {
+  const auto same_vertices = [](const std::vector<VertexHandle>& x, const std::vector<VertexHandle>& y) {
+    return std::equal(x.begin(), x.end(), y.begin(), y.end());
+  };
+  if (a.mesh.n_vertices() != b.mesh.n_vertices() || a.mesh.n_faces() != b.mesh.n_faces() ||
+      !same_vertices(a.anchor_vertices, b.anchor_vertices) || a.chains.size() != b.chains.size())
+    return false;
+  for (std::size_t e = 0; e < a.chains.size(); ++e) {
+    if (!same_vertices(a.chains[e], b.chains[e])) return false;
+  }
+  for (VertexHandle v : a.mesh.vertices()) {
+    if (a.mesh.point(v) != b.mesh.point(v)) return false;
+  }
+  const bool patches = has_patch_property(a.mesh);
+  if (patches != has_patch_property(b.mesh)) return false;
+  for (FaceHandle f : a.mesh.faces()) {
+    const FaceHandle g = b.mesh.face_handle(f.idx());
+    if (!std::equal(a.mesh.cfv_begin(f), a.mesh.cfv_end(f), b.mesh.cfv_begin(g), b.mesh.cfv_end(g)))
+      return false;
+    if (patches && patch_of(a.mesh, f) != patch_of(b.mesh, g)) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+bool same_layout(const Layout& a, const Layout& b) {
+  if (a.n_anchors != b.n_anchors || a.edges.size() != b.edges.size() || a.patches != b.patches) return false;
+  for (std::size_t e = 0; e < a.edges.size(); ++e) {
+    if (a.edges[e].anchors != b.edges[e].anchors) return false;
+  }
+  return same_side(a.sides[0], b.sides[0]) && same_side(a.sides[1], b.sides[1]);
+}
 
 std::vector<VertexHandle> halfedge_chain(const Layout& layout, int side, int h) {
   std::vector<VertexHandle> chain = layout.sides[side].chains[layout_edge_of(h)];

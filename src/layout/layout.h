@@ -70,6 +70,12 @@ bool has_patch_property(const Mesh& mesh);
 /// keep -1; a face reached by two patches keeps the first (the checker reports both cases).
 void assign_patches(Layout& layout);
 
+/// Whether two layouts are the same: the same combinatorics (edges, patches) embedded the same
+/// way on both sides (anchor vertices, chains, and the refined meshes: vertex positions, faces and
+/// their patches). Anything built from a layout is then the same for both (map/pair_mapping.cpp
+/// does not map a later layout again when it repeats one mapped before).
+bool same_layout(const Layout& a, const Layout& b);
+
 /// Outgoing layout halfedges at `anchor` in counter-clockwise order as the mesh of `side`
 /// shows them (starting anywhere). Mesh halfedges that start no chain are skipped.
 std::vector<int> mesh_rotation(const Layout& layout, int side, int anchor);

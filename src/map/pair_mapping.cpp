@@ -110,6 +110,7 @@ struct MapAttempt {
   ComposedImages composed;
   std::optional<MapOptimizationResult> optimized;  // the map optimized on the target, when asked
   int optimized_folds = 0;  // its flipped remesh faces (the remesh's own count, as flipped_after)
+  bool repeats = false;     // its layout repeats one mapped before: it was not mapped (no cross map)
 
   int folds() const { return optimized ? optimized_folds : composed.untangled.flipped_after; }
 
@@ -154,7 +155,8 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
                        const std::vector<std::array<int, 3>>& faces, const Mesh& target,
                        const std::array<PlacedAnchors, 2>& anchors, const std::array<const Mesh*, 2>& refined,
                        const DomainOptimizationSettings& optimization, const PairSettings& settings,
-                       PairSeconds& seconds, MapBudget& budget, const std::function<void(const char*)>& stage) {
+                       PairSeconds& seconds, MapBudget& budget, const std::function<void(const char*)>& stage,
+                       const std::vector<const Layout*>& mapped_before = {}) {
   --budget.left;
   MapAttempt attempt;
   attempt.layout = &layout_storage;
@@ -168,6 +170,10 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
   attempt.optimization = optimize_base_domain(layout_storage.layout, optimization);
   const Layout& layout = layout_storage.layout;
   seconds.optimize += watch.lap();
+  // Corners kept open where none collapsed give the first layout again: the same map.
+  attempt.repeats = std::any_of(mapped_before.begin(), mapped_before.end(),
+                                [&](const Layout* before) { return same_layout(layout, *before); });
+  if (attempt.repeats) return attempt;
 
   stage("parameterize");
   attempt.cross =
@@ -295,11 +301,14 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
     if (folded != near_folds) corners_kept_at.push_back(folded);  // else the same layout again
     DomainOptimizationSettings keeping = first;
     keeping.stretching.keep_corners = true;
+    std::vector<const Layout*> mapped = {&result.layout.layout};
     for (std::size_t k = 0; k < corners_kept_at.size() && attempt.folds() > 0 && budget.allows_another(); ++k) {
       keeping.stretching.keep_corners_at = corners_kept_at[k];
       MapAttempt retry = attempt_map(later_layouts[k], source, faces, target, result.anchors, refined,
-                                     keeping, settings, result.seconds, budget, stage);
+                                     keeping, settings, result.seconds, budget, stage, mapped);
       ++result.layouts_built;
+      if (retry.repeats) continue;
+      mapped.push_back(&later_layouts[k].layout);
       if (retry.folds() < attempt.folds()) {
         attempt = std::move(retry);
         result.layout_kept = result.layouts_built;

@@ -44,7 +44,8 @@ struct PairSettings {
   /// When the remesh still folds after untangling, build the base domain again with corners kept
   /// open (StretchSettings::keep_corners) at the anchors near the folds and their neighbours, and,
   /// if that map folds too, a third time at the anchors near the folds alone; keep the map with
-  /// the fewest folds (never without untangling: then Gamma's own folds are asked for).
+  /// the fewest folds (never without untangling: then Gamma's own folds are asked for). A later
+  /// layout the same as one mapped before is not mapped again (it still counts against max_maps).
   bool retry_keeping_corners = true;
   /// When the remesh still folds and the layout's corners disagree at some anchors
   /// (map/corner_report.h), map again with a helper anchor behind each of them

@@ -154,6 +154,27 @@ TEST(ConsistentLayout, SameResultAtAnyThreadCount) {
   EXPECT_EQ(parallel.layout.patches, serial.layout.patches);
 }
 
+TEST(ConsistentLayout, SameLayoutTellsARepeatFromAnotherLayout) {
+  const auto& [man, woman] = humans();
+  const std::vector<int> ids = test::farthest_points(man, 20, 100);
+  const Layout first = build_consistent_layout(man, handles(ids), woman, handles(ids)).layout;
+  const Layout again = build_consistent_layout(man, handles(ids), woman, handles(ids)).layout;
+  EXPECT_TRUE(same_layout(first, again));
+  EXPECT_TRUE(same_layout(again, first));
+
+  // One refined vertex of the target moved a hair: another embedding.
+  Layout moved = again;
+  Mesh& target = moved.sides[1].mesh;
+  const VertexHandle v(static_cast<int>(target.n_vertices()) - 1);
+  target.set_point(v, target.point(v) + Mesh::Point(1e-9, 0.0, 0.0));
+  EXPECT_FALSE(same_layout(first, moved));
+
+  // One anchor fewer: other combinatorics.
+  const std::vector<int> fewer(ids.begin(), ids.end() - 1);
+  EXPECT_FALSE(
+      same_layout(first, build_consistent_layout(man, handles(fewer), woman, handles(fewer)).layout));
+}
+
 // The octahedron's faces (outward), optionally without the last and/or twice (a second copy
 // shifted away): an open mesh and a two-component mesh.
 Mesh octahedron_variant(bool drop_a_face, bool two_copies) {
