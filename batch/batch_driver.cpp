@@ -162,6 +162,7 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
   options["optimization"]["merge"] = settings.optimization.merge;
   options["optimization"]["contact_clearance"] = settings.optimization.stretching.contact_clearance;
   options["optimization"]["keep_corners"] = settings.optimization.stretching.keep_corners;
+  options["optimization"]["swap_winding_curves"] = settings.optimization.swap_winding_curves;
   options["relax"] = settings.cross_map.relax;
   options["second_layout"] = settings.retry_keeping_corners;
   options["tip_anchors"] = settings.tip_anchors;
@@ -198,6 +199,7 @@ std::string implied_options_json() {
   before.untangle = false;
   before.max_released_anchors = 0;
   before.optimize_map = false;
+  before.optimization.swap_winding_curves = false;
   before.work_vertices = 0;
   return batch_options_json(before, {}, intake_before_it_existed());
 }

@@ -377,6 +377,7 @@ std::vector<Configuration> configurations() {
   s.optimization.stretch = false;
   s.optimization.metric = SwapMetric::none;
   s.optimization.merge = false;
+  s.optimization.swap_winding_curves = false;
   list.push_back({"Original", s});
   s.optimization.stretch = true;
   list.push_back({"Stretched", s});
@@ -394,6 +395,7 @@ std::vector<Configuration> configurations() {
   no_map_optimization.optimize_map = false;
   list.push_back({"Balanced + merging, no map optimization", no_map_optimization});
   s.optimization.merge = true;
+  s.optimization.swap_winding_curves = true;
   s.optimize_map = true;
   list.push_back({"Balanced + merging, first layout only", s});
   PairSettings corners_kept = s;
@@ -401,6 +403,7 @@ std::vector<Configuration> configurations() {
   list.push_back({"Balanced + merging, corners kept", corners_kept});
   s.cross_map.relax = false;
   s.optimize_map = false;
+  s.optimization.swap_winding_curves = false;
   list.push_back({"Balanced + merging, no relaxation", s});
   return list;
 }

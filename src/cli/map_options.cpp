@@ -25,6 +25,11 @@ void add_optimization_options(CLI::App& command, DomainOptimizationSettings& opt
       "Merge triangle pairs into quads where it lowers the domain distortion (paper section 5; default on)");
   command.add_flag("!--no-stretch", optimization.stretch,
                    "Keep the initial layout curves instead of straightening them into geodesics first");
+  command.add_flag(
+      "--swap-winding,!--no-swap-winding", optimization.swap_winding_curves,
+      "With --optimize balanced, also swap a curve that winds round a limb or the head on both meshes "
+      "(over 3 times as long as the straight distance between its anchors), which the balanced "
+      "threshold does not see (ours, beyond the paper; default on)");
   command.add_flag("--keep-corners", optimization.stretching.keep_corners,
                    "Leave as traced the curves whose straightening collapses a patch corner on one mesh only "
                    "(curves from a fingertip running side by side down the finger)");
@@ -106,6 +111,7 @@ nlohmann::json optimization_json(const DomainOptimizationResult& optimization) {
   return {{"metric", std::string(to_string(optimization.settings.metric))},
           {"stretch", optimization.settings.stretch},
           {"keep_corners", optimization.settings.stretching.keep_corners},
+          {"swap_winding_curves", optimization.settings.swap_winding_curves},
           {"unstretched_curves", optimization.unstretched_curves},
           {"merge", optimization.settings.merge},
           {"swaps", optimization.swaps},

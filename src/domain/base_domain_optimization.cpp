@@ -141,14 +141,28 @@ class BoundarySwapper {
     result_.active_curves = static_cast<int>(std::count_if(all.begin(), all.end(), [&](double energy) { return energy > threshold_; }));
   }
 
+  // Whether curve e winds on both sides (winds()).
+  bool winding(int e, const QuadMeasures& q) const {
+    std::array<double, 2> chords{};
+    for (int side = 0; side < 2; ++side) {
+      const LayoutSide& embedding = layout_.sides[side];
+      const auto at = [&](int k) {
+        return position(embedding.mesh, embedding.anchor_vertices[layout_.edges[e].anchors[k]]);
+      };
+      chords[side] = (at(0) - at(1)).norm();
+    }
+    return winds({q.measures[0].ab, q.measures[1].ab}, chords);
+  }
+
   Evaluation evaluate(int e) const {
     Evaluation evaluation;
     const std::optional<QuadMeasures> q = quad_measures(e);
     if (!q) return evaluation;
     // Balanced step 3: only the active curves (by the threshold of step 2, on their current
-    // E_DL2) and the degenerate ones.
+    // E_DL2) and the degenerate ones; and the winding ones, when asked.
     if (settings_.metric == SwapMetric::balanced && lpbds_valid_before(q->measures) &&
-        !(dl2_energy_before(q->measures) > threshold_)) {
+        !(dl2_energy_before(q->measures) > threshold_) &&
+        !(settings_.swap_winding_curves && winding(e, *q))) {
       return evaluation;
     }
     const SwapTrial trial = try_swap(layout_, e, settings_.stretching);

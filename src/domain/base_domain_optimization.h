@@ -19,6 +19,9 @@ struct DomainOptimizationSettings {
   SwapMetric metric = SwapMetric::balanced; ///< step 2
   bool merge = true;                        ///< step 3
   StretchSettings stretching;               ///< how curves are straightened (also after each swap)
+  /// balanced only (ours, beyond the paper): a curve that winds on both sides (winds() of
+  /// domain/swap_metrics.h) is a candidate too, although its patches are alike on both sides
+  bool swap_winding_curves = true;
 };
 
 /// What the optimization did.
@@ -56,7 +59,8 @@ struct DomainOptimizationResult {
 /// swap greedily (Algorithm 1 keyed on swap_key of the metric, re-evaluating the four side
 /// curves of each swapped quad; the balanced algorithm restricts candidates to curves whose
 /// E_DL2 is above the threshold computed once after stretching, over the curves with valid
-/// LPBDs, plus the curves with a degenerate LPBD), then merge (Algorithm 2 by eq. 15).
+/// LPBDs, plus the curves with a degenerate LPBD and, with swap_winding_curves, those that
+/// wind), then merge (Algorithm 2 by eq. 15).
 /// The dense metrics ad and l2 (paper section 4.1) measure the map of the quad's two patches
 /// (domain/dense_swap_metrics.h) on the current layout (cached per patch until a swap changes
 /// the patch) and on try_swap's result; a swap whose after-map cannot be measured is no

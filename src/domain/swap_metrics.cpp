@@ -184,6 +184,10 @@ double balanced_threshold(const std::vector<double>& energies) {
   return 2.0 + (1.0 - kBalancedPhi) * excess;
 }
 
+bool winds(const std::array<double, 2>& lengths, const std::array<double, 2>& chords) {
+  return lengths[0] > kWindingRatio * chords[0] && lengths[1] > kWindingRatio * chords[1];
+}
+
 bool operator<(const SwapKey& lhs, const SwapKey& rhs) {
   if (lhs.repairs != rhs.repairs) return rhs.repairs;
   return lhs.value < rhs.value;

@@ -176,6 +176,17 @@ inline constexpr double kBalancedPhi = 0.618;
 /// above it. 2.0 when `energies` is empty.
 double balanced_threshold(const std::vector<double>& energies);
 
+/// A curve winds on a side when it is longer than this many times the straight distance between
+/// its two anchors there.
+inline constexpr double kWindingRatio = 3.0;
+
+/// Whether a curve winds on both sides (`lengths`: the curve's length per side, `chords`: the
+/// straight distance between its anchors per side): a completion curve pushed round a limb or the
+/// head by the curves already laid (SHREC'19 26 with the 73 CAESAR landmarks: Sellion to
+/// Supramenton, 10 cm apart, by a 1.04 m curve down the back and up the chest on both meshes).
+/// Its patches are alike on both sides, so the balanced algorithm's threshold does not see it.
+bool winds(const std::array<double, 2>& lengths, const std::array<double, 2>& chords);
+
 /// The heap key of a swap. Algorithm 1 pops the greatest: a swap that makes an invalid LPBD
 /// valid (`repairs`) before any other, then by `value`.
 struct SwapKey {

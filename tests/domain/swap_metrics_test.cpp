@@ -63,6 +63,19 @@ TEST(SwapLpbds, CornerOrderOfTheFourTriangles) {
   EXPECT_NEAR(lpbds.after[1].angles[2], kPi / 2, 1e-15);
 }
 
+TEST(WindingCurves, LongerThanThreeChordsOnBothSides) {
+  // Sellion to Supramenton on SHREC'19 26 [73 CAESAR]: 10 cm apart, a 1.04 m (1.19 m) curve.
+  EXPECT_TRUE(winds({1.04, 1.19}, {0.097, 0.095}));
+  // Winding on one side only: the LPBDs differ, which the balanced threshold sees already.
+  EXPECT_FALSE(winds({1.04, 0.12}, {0.097, 0.095}));
+  EXPECT_FALSE(winds({0.12, 1.19}, {0.097, 0.095}));
+  // At exactly kWindingRatio chords it does not wind yet; just above, it does.
+  EXPECT_FALSE(winds({3.0, 3.0}, {1.0, 1.0}));
+  EXPECT_TRUE(winds({3.0 + 1e-9, 3.0 + 1e-9}, {1.0, 1.0}));
+  // A geodesic round a curved surface is longer than its chord, by far less than that.
+  EXPECT_FALSE(winds({M_PI / 2.0, M_PI / 2.0}, {std::sqrt(2.0), std::sqrt(2.0)}));
+}
+
 TEST(AreaMetric, PsiAndEquationEightByHand) {
   EXPECT_DOUBLE_EQ(area_psi(3.0, 2.0), 1.5);
   EXPECT_DOUBLE_EQ(area_psi(2.0, 2.0), 1.0);
