@@ -100,9 +100,10 @@ struct Candidate {
   }
 };
 
-// A tree edge's target path keeps within kCorridorRadius times the template path's length of
-// that path, once the target is brought onto the template by the similarity that best fits the
-// kCorridorFitAnchors anchors nearest the edge's two ends (LayoutBuilder::corridor).
+// A tree edge's (and a diagonal's) target path keeps within kCorridorRadius times the template
+// path's length of that path, once the target is brought onto the template by the similarity
+// that best fits the kCorridorFitAnchors anchors nearest the edge's two ends
+// (LayoutBuilder::corridor).
 constexpr int kCorridorFitAnchors = 8;
 constexpr double kCorridorRadius = 0.35;
 
@@ -281,12 +282,24 @@ class LayoutBuilder {
     };
   }
 
-  // Trace corner ga -> corner gb on both meshes (independent searches, run in parallel) and keep
-  // the pair when it is shorter in sum than `best`.
+  // Trace corner ga -> corner gb on both meshes (with diagonal_corridor the target's in the
+  // corridor about the template's first, else independent searches run in parallel) and keep the
+  // pair when it is shorter in sum than `best`.
   void consider(int a, int ga, int b, int gb, Choice& best) {
     std::array<TracedPath, 2> paths;
-    tbb::parallel_invoke([&] { paths[0] = trace(0, a, ga, b, gb); },
-                         [&] { paths[1] = trace(1, a, ga, b, gb); });
+    if (result_.settings.diagonal_corridor) {
+      // As for the tree: a diagonal may also pass either way round a limb or the head inside its
+      // face (SHREC'19 26 with the 73 CAESAR landmarks: Sellion to Nuchale round the right of the
+      // head on the template and the left on the target, the template's crown squeezed into a
+      // band between).
+      paths[0] = trace(0, a, ga, b, gb);
+      if (!paths[0].found()) return;
+      paths[1] = trace(1, a, ga, b, gb, corridor(a, b, paths[0]));
+      if (!paths[1].found()) paths[1] = trace(1, a, ga, b, gb);
+    } else {
+      tbb::parallel_invoke([&] { paths[0] = trace(0, a, ga, b, gb); },
+                           [&] { paths[1] = trace(1, a, ga, b, gb); });
+    }
     if (!paths[0].found() || !paths[1].found()) return;
     if (best.found() && paths[0].length + paths[1].length >= best.length()) return;
     best = {a, ga, b, gb, std::move(paths)};

@@ -40,6 +40,12 @@ struct ConsistentLayoutSettings {
   /// same corners. With both settings false the tree is Kraevoy and Sheffer's greedy alone, which
   /// the tests of the retries use to make the maps those retries repair.
   bool tree_corridor = true;
+  /// The same for each diagonal (steps 3 and 4): its target path is traced in the corridor about
+  /// its template path through the same corners first. A face of the tree is a disc, but a
+  /// diagonal inside it may still pass either side of the head or a limb where no anchor lies
+  /// between (a diagonal's route is fixed up to isotopy only), and a map between the two routes
+  /// squeezes what lies between.
+  bool diagonal_corridor = true;
 };
 
 /// Wall-clock seconds of each stage of the construction.

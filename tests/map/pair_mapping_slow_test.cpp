@@ -77,6 +77,7 @@ TEST(PairMapping, UntanglingLeavesNoFlippedFaceOnTheSampleTargets) {
     PairSettings paper;
     paper.layout.unambiguous_tree_first = false;  // the tree as the greedy alone builds it,
     paper.layout.tree_corridor = false;           // whose map squeezes the thumb tip's ring
+    paper.layout.diagonal_corridor = false;
     paper.cross_map.relax = false;
     paper.retry_keeping_corners = false;  // one layout: a second one would hide what untangling left
     paper.tip_anchors = false;            // and so would mapping again with helper anchors
