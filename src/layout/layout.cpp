@@ -32,15 +32,9 @@ std::vector<char> chain_edge_mask(const LayoutSide& side) {
 // Whether two sides hold the same mesh (positions, faces in order, patches), anchor vertices
 // and chains.
 bool same_side(const LayoutSide& a, const LayoutSide& b) {
-  const auto same_vertices = [](const std::vector<VertexHandle>& x, const std::vector<VertexHandle>& y) {
-    return std::equal(x.begin(), x.end(), y.begin(), y.end());
-  };
   if (a.mesh.n_vertices() != b.mesh.n_vertices() || a.mesh.n_faces() != b.mesh.n_faces() ||
-      !same_vertices(a.anchor_vertices, b.anchor_vertices) || a.chains.size() != b.chains.size())
+      a.anchor_vertices != b.anchor_vertices || a.chains != b.chains)
     return false;
-  for (std::size_t e = 0; e < a.chains.size(); ++e) {
-    if (!same_vertices(a.chains[e], b.chains[e])) return false;
-  }
   for (VertexHandle v : a.mesh.vertices()) {
     if (a.mesh.point(v) != b.mesh.point(v)) return false;
   }

@@ -134,9 +134,7 @@ bool MapOptimizer::slide_in_face_anchors() {
     Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
     double edges = 0.0;
     for (std::size_t c = 0; c < corners.size(); ++c) {
-      std::vector<FaceReferences> references;
-      for (const Incidence& in : incidences_[corners[c]]) references.push_back(reference_normal(in.face));
-      gradient += ring_gradient(corners[c], references, positions_[corners[c]]);
+      gradient += ring_gradient(corners[c], ring_references(corners[c]), positions_[corners[c]]);
       edges += (positions_[corners[c]] - positions_[corners[(c + 1) % corners.size()]]).norm();
     }
     const Eigen::Vector3d normal = reference_.face_normal(locations_[corners.front()].face);
@@ -287,8 +285,7 @@ bool MapOptimizer::lay_anchor_face_again(int f, const std::vector<int>& anchor,
 
 bool MapOptimizer::move_towards_ring_centroid(int v, const ClosestPointIndex& on_target) {
   const std::vector<Incidence>& ring = incidences_[v];
-  std::vector<FaceReferences> references(ring.size());
-  for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face);
+  const std::vector<FaceReferences> references = ring_references(v);
   const FaceValue before = ring_value(v, references, positions_[v]);
   const int strict_before = strictly_folded_in_ring(v, -1, {}, {});
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -334,9 +331,7 @@ bool MapOptimizer::move_towards_ring_centroid(int v, const ClosestPointIndex& on
         after.against_own + strict_after >= before.against_own + strict_before ||
         !(after.energy < before.energy))
       continue;
-    locations_[v] = there;
-    positions_[v] = y;
-    normals_[v] = there_normal;
+    place(v, {there, y, there_normal});
     moved_[v] = 1;
     return true;
   }

@@ -358,6 +358,13 @@ int MapOptimizer::count_folded() const {
   return folded;
 }
 
+std::vector<FaceReferences> MapOptimizer::ring_references(int v) const {
+  std::vector<FaceReferences> references;
+  references.reserve(incidences_[v].size());
+  for (const Incidence& in : incidences_[v]) references.push_back(reference_normal(in.face));
+  return references;
+}
+
 MapOptimizer::FaceValue MapOptimizer::ring_value(int v, const std::vector<FaceReferences>& references,
                                                  const Eigen::Vector3d& at) const {
   FaceValue ring;
@@ -407,8 +414,7 @@ bool MapOptimizer::move_vertex(int v) {
   if (ring.empty()) return false;
   const SurfacePoint& here = locations_[v];
   const Eigen::Vector3d x = positions_[v];
-  std::vector<FaceReferences> references(ring.size());
-  for (std::size_t k = 0; k < ring.size(); ++k) references[k] = reference_normal(ring[k].face);
+  const std::vector<FaceReferences> references = ring_references(v);
   const FaceValue ring_before = ring_value(v, references, x);
   const double before = ring_before.energy;
   if (!std::isfinite(before)) return false;
@@ -481,9 +487,7 @@ bool MapOptimizer::move_vertex(int v) {
          strictly_folded_in_ring(v, v, *there, y) > strict_before))
       continue;
     if (after < before + 1e-4 * fraction * slope) {
-      locations_[v] = *there;
-      positions_[v] = y;
-      normals_[v] = there_normal;
+      place(v, {*there, y, there_normal});
       return true;
     }
   }

@@ -150,6 +150,9 @@ class MapOptimizer {
   // how many are folded against each reference (`folded` unset).
   FaceValue ring_value(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at) const;
 
+  // The references of v's faces (incidences_[v] order) at the current images.
+  std::vector<FaceReferences> ring_references(int v) const;
+
   // d(ring energy)/d(v's image) in 3-D, the reference normals held; folded faces contribute
   // nothing (their energy is constant).
   Eigen::Vector3d ring_gradient(int v, const std::vector<FaceReferences>& references,
