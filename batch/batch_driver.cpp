@@ -168,6 +168,7 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
   options["tip_anchors"] = settings.tip_anchors;
   options["extremity_anchors"] = settings.extremity_anchors;
   options["tip_rounds"] = settings.tip_rounds;
+  options["map_carried_tips"] = settings.map_carried_tips;
   options["untangle"] = settings.untangle;
   options["release_anchors"] = settings.max_released_anchors;
   options["optimize_map"] = settings.optimize_map;
@@ -196,6 +197,7 @@ std::string implied_options_json() {
   before.tip_anchors = false;
   before.extremity_anchors = false;
   before.tip_rounds = 1;
+  before.map_carried_tips = true;  // before the option, every round with tips was made
   before.untangle = false;
   before.max_released_anchors = 0;
   before.optimize_map = false;

@@ -133,10 +133,10 @@ nlohmann::json extremity_anchors_json(const std::vector<ExtremityAnchor>& tips) 
     list.push_back({{"anchor", tip.specs[0].name},
                     {"template_vertex", std::get<AnchorVertex>(tip.specs[0].location).index},
                     {"target_vertex", std::get<AnchorVertex>(tip.specs[1].location).index},
-                    {"mismatch", number(tip.mismatch)},
+                    {"mismatch", number(tip.mismatch())},
                     {"matched_by", tip.matched_by == TipMatching::through_map ? "through the first map"
-                                   : tip.matched_by == TipMatching::by_cell    ? "by the landmark's cell"
-                                                                               : "by distances"}});
+                                   : tip.matched_by == TipMatching::by_cell   ? "by the landmark's cell"
+                                                                              : "by distances"}});
   }
   return list;
 }

@@ -74,13 +74,20 @@ class TipMismatch {
     return back;
   }
 
-  double operator()(int source_vertex, int target_vertex, const Eigen::Vector3d& target_preimage) const {
+  // [0] on the template, [1] on the target (ExtremityAnchor::miss).
+  std::array<double, 2> misses(int source_vertex, int target_vertex,
+                               const Eigen::Vector3d& target_preimage) const {
+    const double on_source =
+        (position(source_, source_.vertex_handle(source_vertex)) - target_preimage).norm() / source_scale_;
     const double on_target =
         (map_.images[source_vertex] - position(target_, target_.vertex_handle(target_vertex))).norm() /
         target_scale_;
-    const double on_source =
-        (position(source_, source_.vertex_handle(source_vertex)) - target_preimage).norm() / source_scale_;
-    return on_target + on_source;
+    return {on_source, on_target};
+  }
+
+  double operator()(int source_vertex, int target_vertex, const Eigen::Vector3d& target_preimage) const {
+    const std::array<double, 2> both = misses(source_vertex, target_vertex, target_preimage);
+    return both[0] + both[1];
   }
 
  private:
@@ -94,14 +101,15 @@ class TipMismatch {
 
 // A helper anchor on template vertex `s` and target vertex `t`, named "tip N" ("'" added while
 // the name is in `names`, which gains it).
-ExtremityAnchor tip_anchor(int s, int t, double mismatch, std::size_t n, std::vector<std::string>& names) {
+ExtremityAnchor tip_anchor(int s, int t, const std::array<double, 2>& miss, std::size_t n,
+                           std::vector<std::string>& names) {
   std::string name = "tip " + std::to_string(n);
   while (std::find(names.begin(), names.end(), name) != names.end()) name += "'";
   names.push_back(name);
   ExtremityAnchor anchor;
   anchor.specs[0] = {name, AnchorVertex{s}, "", 0};
   anchor.specs[1] = {name, AnchorVertex{t}, "", 0};
-  anchor.mismatch = mismatch;
+  anchor.miss = miss;
   return anchor;
 }
 
@@ -289,7 +297,9 @@ std::vector<ExtremityAnchor> match_extremities(const Mesh& source, const std::ve
   for (int s = 0; s < n_source; ++s) {
     const int t = best_target[s];
     if (best_source[t] != s || !(cost[s * n_target + t] < max_mismatch)) continue;
-    matched.push_back(tip_anchor(source_tips[s], target_tips[t], cost[s * n_target + t], matched.size() + 1, names));
+    matched.push_back(tip_anchor(source_tips[s], target_tips[t],
+                                 mismatch.misses(source_tips[s], target_tips[t], target_tip_preimage[t]),
+                                 matched.size() + 1, names));
   }
   return matched;
 }
@@ -352,8 +362,8 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
     const double ratio = (on_source.tip[k] >= 0 ? on_source.tip_distance[k] : on_source.end_distance[k]) /
                          (on_target.tip[k] >= 0 ? on_target.tip_distance[k] : on_target.end_distance[k]);
     if (!(ratio >= 0.5 && ratio <= 2.0) || !squeezed(s, k)) continue;
-    by_cell.push_back(
-        tip_anchor(s, t, mismatch(s, t, mismatch.preimage(t)), matched.size() + by_cell.size() + 1, names));
+    by_cell.push_back(tip_anchor(s, t, mismatch.misses(s, t, mismatch.preimage(t)),
+                                 matched.size() + by_cell.size() + 1, names));
     by_cell.back().matched_by = TipMatching::by_cell;
   }
   return by_cell;
@@ -386,7 +396,7 @@ std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors
     const std::vector<std::pair<int, int>> pairs = clear_distance_matches(on_source, on_target, source.anchors.size());
     if (pairs.empty()) break;
     for (const auto& [s, t] : pairs) {
-      by_distances.push_back(tip_anchor(s, t, mismatch(s, t, mismatch.preimage(t)),
+      by_distances.push_back(tip_anchor(s, t, mismatch.misses(s, t, mismatch.preimage(t)),
                                         matched.size() + by_distances.size() + 1, names));
       by_distances.back().matched_by = TipMatching::by_distances;
       on_source.references.push_back(s);

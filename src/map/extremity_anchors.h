@@ -53,8 +53,16 @@ enum class TipMatching {
 /// A tip matched on both meshes.
 struct ExtremityAnchor {
   std::array<AnchorSpec, 2> specs;  ///< [0] on the template input mesh, [1] on the target's (vertex anchors)
-  double mismatch = 0.0;  ///< how far the first map put each tip from the other, summed, as a fraction of sqrt(area) of each mesh
+  /// How far the first map put each tip from the other, as a fraction of sqrt(area) of each mesh:
+  /// [0] the target tip's preimage from the template tip, [1] the template tip's image from the
+  /// target tip.
+  std::array<double, 2> miss{};
   TipMatching matched_by = TipMatching::through_map;
+
+  double mismatch() const { return miss[0] + miss[1]; }  ///< both misses, summed
+  /// Whether the first map already carries the tips to each other within `reach` (a fraction of
+  /// sqrt(area)) on both meshes.
+  bool carried_within(double reach) const { return miss[0] <= reach && miss[1] <= reach; }
 };
 
 /// The map the tips are matched through: template vertex i lies at `images[i]` on the target;

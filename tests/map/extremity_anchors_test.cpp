@@ -48,7 +48,7 @@ TEST(MatchExtremities, TheIdentityMatchesEachTipWithItself) {
     EXPECT_EQ(std::get<AnchorVertex>(matched[k].specs[0].location).index, tips[k]);
     EXPECT_EQ(std::get<AnchorVertex>(matched[k].specs[1].location).index, tips[k]);
     EXPECT_EQ(matched[k].specs[0].name, matched[k].specs[1].name);
-    EXPECT_NEAR(matched[k].mismatch, 0.0, 1e-12);
+    EXPECT_NEAR(matched[k].mismatch(), 0.0, 1e-12);
   }
   // Through a map that swaps the two tips' images, each template tip is matched with the other.
   std::vector<Eigen::Vector3d> swapped = images;
@@ -94,7 +94,7 @@ TEST_F(SqueezedSpike, TheLandmarksCellMatchesTheSqueezedTip) {
   EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[0].location).index, 0);
   EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[1].location).index, 0);
   EXPECT_EQ(by_cell[0].specs[0].name, "tip 1'");
-  EXPECT_GT(by_cell[0].mismatch, 0.1);
+  EXPECT_GT(by_cell[0].mismatch(), 0.1);
 
   // A matched tip nearer the landmark than the spike's tip (the octahedron is small beside its
   // spike) says the limb has its helper already; through the identity nothing is squeezed.

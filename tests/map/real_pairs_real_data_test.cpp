@@ -65,6 +65,34 @@ INSTANTIATE_TEST_SUITE_P(CaesarLandmarks, FaustPairs,
                                            FaustCase{"tr_reg_090", 0.005}),
                          [](const ::testing::TestParamInfo<FaustCase>& pair) { return pair.param.target; });
 
+// FAUST 090 against 000 with the 73 CAESAR landmarks: the first map already carries each fingertip
+// and toe without a landmark to its partner within the tip reach on both meshes, so no round of
+// tips is made (measured E_L2 1.0095 against 1.0087 through them, half the time). Asked for, the
+// round is made through exactly such tips.
+TEST(FaustPair, NoRoundOfTipsTheMapAlreadyCarries) {
+  const std::filesystem::path data = test::shared_data_dir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
+  const LoadedMesh source = load_mesh(data / "faust_registrations/tr_reg_000.ply");
+  const LoadedMesh target = load_mesh(data / "faust_registrations/tr_reg_090.ply");
+  const AnchorSet anchors = read_anchors(data / "faust_landmarks/smpl_caesar_landmark_indices.json");
+  PairSettings skipping;
+  PairSettings making = skipping;
+  making.map_carried_tips = true;
+  PairSettings without_tips = skipping;
+  without_tips.extremity_anchors = false;
+  const PairMapping skipped = map_pair(source.mesh, anchors, target.mesh, anchors, {}, skipping);
+  const PairMapping made = map_pair(source.mesh, anchors, target.mesh, anchors, {}, making);
+  const PairMapping plain = map_pair(source.mesh, anchors, target.mesh, anchors, {}, without_tips);
+
+  EXPECT_EQ(skipped.maps_made, 1);
+  EXPECT_TRUE(skipped.extremity_anchors.empty());
+  EXPECT_EQ(skipped.distortion.all.e_l2, plain.distortion.all.e_l2);
+  EXPECT_GE(made.maps_made, 2);
+  ASSERT_FALSE(made.extremity_anchors.empty());  // measured 12
+  for (const ExtremityAnchor& tip : made.extremity_anchors)
+    EXPECT_TRUE(tip.carried_within(made.settings.tip_reach));
+}
+
 // Anchors "a0", "a1", ... at the vertex ids of a file, the first number of each line: a TOSCA
 // correspondence file (.pid) or a landmark file of Schmidt et al. 2023 (one number a line).
 AnchorSet indexed_anchors(const std::filesystem::path& file) {
