@@ -197,7 +197,6 @@ std::string implied_options_json() {
   before.tip_anchors = false;
   before.extremity_anchors = false;
   before.tip_rounds = 1;
-  before.map_carried_tips = true;  // before the option, every round with tips was made
   before.untangle = false;
   before.max_released_anchors = 0;
   before.optimize_map = false;

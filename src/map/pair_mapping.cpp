@@ -635,8 +635,7 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
        match_extremities_by_distances(source_side, target_side, first, tips, anchor_names(on_source)))
     tips.push_back(std::move(tip));
   // A round whose every tip the map already carries to its partner within the reach on both
-  // meshes (the precision tips are found to: ends lie a reach apart) holds each tip about where
-  // it lies, at the cost of a whole map (PairSettings::map_carried_tips).
+  // meshes is made only when asked (PairSettings::map_carried_tips, the default).
   const auto carried = [&](const ExtremityAnchor& tip) { return tip.carried_within(in.settings.tip_reach); };
   if (!in.settings.map_carried_tips && std::all_of(tips.begin(), tips.end(), carried)) return std::nullopt;
   std::optional<AnchoredMap> tipped = map_with_extremity_anchors(in, current, tips, seconds);
