@@ -139,9 +139,8 @@ class LayoutBuilder {
       // Through the same corners the target's shortest path may still pass the other way round
       // a limb, the head or the trunk (nothing marks the sides of a protrusion without anchors):
       // it keeps near where the template's runs, when it can.
-      TracedPath path1;
-      if (result_.settings.tree_corridor) path1 = trace(1, c.a, ga, c.b, gb, corridor(c.a, c.b, path0));
-      if (!path1.found()) path1 = trace(1, c.a, ga, c.b, gb);
+      const TracedPath path1 = result_.settings.tree_corridor ? trace_target_near(c.a, ga, c.b, gb, path0)
+                                                              : trace(1, c.a, ga, c.b, gb);
       XP_ASSERT_MSG(path1.found(),
                     "no target path between anchors " << c.a << " and " << c.b << " in the forest");
       add_edge(c.a, ga, c.b, gb, path0, path1);
@@ -282,6 +281,13 @@ class LayoutBuilder {
     };
   }
 
+  // The target's path from corner ga to corner gb in the corridor about `template_path`, or,
+  // when there is none in it, the shortest anywhere.
+  TracedPath trace_target_near(int a, int ga, int b, int gb, const TracedPath& template_path) {
+    TracedPath path = trace(1, a, ga, b, gb, corridor(a, b, template_path));
+    return path.found() ? path : trace(1, a, ga, b, gb);
+  }
+
   // Trace corner ga -> corner gb on both meshes (with diagonal_corridor the target's in the
   // corridor about the template's first, else independent searches run in parallel) and keep the
   // pair when it is shorter in sum than `best`.
@@ -294,8 +300,7 @@ class LayoutBuilder {
       // band between).
       paths[0] = trace(0, a, ga, b, gb);
       if (!paths[0].found()) return;
-      paths[1] = trace(1, a, ga, b, gb, corridor(a, b, paths[0]));
-      if (!paths[1].found()) paths[1] = trace(1, a, ga, b, gb);
+      paths[1] = trace_target_near(a, ga, b, gb, paths[0]);
     } else {
       tbb::parallel_invoke([&] { paths[0] = trace(0, a, ga, b, gb); },
                            [&] { paths[1] = trace(1, a, ga, b, gb); });

@@ -33,6 +33,20 @@ void use_the_earlier_tree(PairSettings& settings) {
   settings.layout.diagonal_corridor = false;
 }
 
+// FAUST tr_reg_000 and another registration, which share SMPL's vertex order (template vertex i
+// belongs at target vertex i), with the 73 CAESAR landmarks at the same vertex ids on both.
+struct FaustMeshes {
+  LoadedMesh source;
+  LoadedMesh target;
+  AnchorSet anchors;
+};
+
+FaustMeshes load_faust_pair(const std::filesystem::path& data, const std::string& target) {
+  return {load_mesh(data / "faust_registrations/tr_reg_000.ply"),
+          load_mesh(data / ("faust_registrations/" + target + ".ply")),
+          read_anchors(data / "faust_landmarks/smpl_caesar_landmark_indices.json")};
+}
+
 struct FaustCase {
   std::string target;
   double gt_error_bound;  // mean distance to the truth over the diagonal; measured in the comment
@@ -43,9 +57,7 @@ class FaustPairs : public ::testing::TestWithParam<FaustCase> {};
 TEST_P(FaustPairs, NoFoldedFaceAreaWithinTwoPercentNearTheTruth) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
-  const LoadedMesh source = load_mesh(data / "faust_registrations/tr_reg_000.ply");
-  const LoadedMesh target = load_mesh(data / ("faust_registrations/" + GetParam().target + ".ply"));
-  const AnchorSet anchors = read_anchors(data / "faust_landmarks/smpl_caesar_landmark_indices.json");
+  const auto [source, target, anchors] = load_faust_pair(data, GetParam().target);
   ASSERT_EQ(anchors.anchors.size(), 73u);
   const PairMapping map = map_pair(source.mesh, anchors, target.mesh, anchors, {});
 
@@ -72,9 +84,7 @@ INSTANTIATE_TEST_SUITE_P(CaesarLandmarks, FaustPairs,
 TEST(FaustPair, NoRoundOfTipsTheMapAlreadyCarriesWhenAskedNot) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
-  const LoadedMesh source = load_mesh(data / "faust_registrations/tr_reg_000.ply");
-  const LoadedMesh target = load_mesh(data / "faust_registrations/tr_reg_090.ply");
-  const AnchorSet anchors = read_anchors(data / "faust_landmarks/smpl_caesar_landmark_indices.json");
+  const auto [source, target, anchors] = load_faust_pair(data, "tr_reg_090");
   const PairSettings making;
   PairSettings skipping = making;
   skipping.map_carried_tips = false;
