@@ -69,6 +69,12 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "such pairs (the 50k-vertex bench pair: 4.0 -> 2.4 s) but leaves fingertips crumpled or blunt where "
       "the round would round them (FAUST 000/030 with 29 landmarks: ground-truth error 0.58 -> 0.71% of "
       "sqrt(area))");
+  command.add_flag(
+      "--retry-doubtful-tips,!--no-retry-doubtful-tips", settings.retry_doubtful_tips,
+      "When a map through tips wins and some tips were matched through a map that carried them more than "
+      "twice the tip reach from their partner, map once more without them (the rest matched again) and "
+      "keep the better map: where the first map squeezed a hand, a fingertip can be paired with another "
+      "finger's (default on; one more whole map on such pairs)");
   command
       .add_option(
           "--release-anchors", settings.max_released_anchors,
