@@ -71,10 +71,10 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "sqrt(area))");
   command.add_flag(
       "--retry-doubtful-tips,!--no-retry-doubtful-tips", settings.retry_doubtful_tips,
-      "When a map through tips wins and some tips were matched through a map that carried them more than "
-      "twice the tip reach from their partner, map once more without them (the rest matched again) and "
-      "keep the better map: where the first map squeezed a hand, a fingertip can be paired with another "
-      "finger's (default on; one more whole map on such pairs)");
+      "When a map through tips wins and the tip the first map carried farthest from its partner missed by "
+      "more than twice the tip reach, map once more without it (the rest matched again) and keep the "
+      "better map: where the first map squeezed a hand, a fingertip can be paired with another finger's "
+      "(default on; one more whole map on such pairs)");
   command
       .add_option(
           "--release-anchors", settings.max_released_anchors,

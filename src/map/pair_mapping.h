@@ -64,10 +64,10 @@ struct PairSettings {
   /// a whole map less, but the tips' ends being carried does not make the fingers right (FAUST
   /// 000/030 [29 anthropometric]: the left hand's fingertips stay crumpled without it).
   bool map_carried_tips = true;
-  /// When a map through tips wins and some of them were matched through a map that carried them
-  /// farther than twice tip_reach from their partner on either mesh, map once more with those
-  /// left out (the other tips matched again without them) and keep the better map: a hand the
-  /// first map squeezed can pair a fingertip with another finger's.
+  /// When a map through tips wins and the tip that the map it was matched through carried farthest
+  /// from its partner missed by more than twice tip_reach (on either mesh), map once more without
+  /// that tip (the others matched again without it) and keep the better map: a hand the first map
+  /// squeezed can pair a fingertip with another finger's.
   bool retry_doubtful_tips = true;
   /// A protrusion tip ends a protrusion at least half this long and is the farthest point within
   /// this distance; fraction of sqrt(area) of each mesh (3.4 cm on an adult body).
