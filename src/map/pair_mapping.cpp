@@ -560,11 +560,11 @@ bool better_with_tips(const PairMapping& other, const PairMapping& current) {
 }
 
 // A map through `current`'s anchors plus `tips`, when it is better than `current` (and than
-// `rival`, when given: another map through tips); nothing otherwise, or when there are no tips
-// or no map is left.
+// `also_beat`, when given: another map through tips); nothing otherwise, or when there are no
+// tips or no map is left.
 std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, const AnchoredMap& current,
                                                       std::vector<ExtremityAnchor> tips, PairSeconds& seconds,
-                                                      const PairMapping* rival = nullptr) {
+                                                      const PairMapping* also_beat = nullptr) {
   if (tips.empty() || !in.budget.allows_another()) return std::nullopt;
   AnchoredMap tipped{{}, current.source_anchors, current.target_anchors};
   for (const ExtremityAnchor& tip : tips) {
@@ -578,12 +578,12 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
   for (const ExtremityAnchor& tip : current.map.extremity_anchors)  // an earlier round's
     settings.anchor_slack_by_name[tip.specs[0].name] = slack;
   // The trial's own later layouts (PairSettings::retry_keeping_corners) are made only when its
-  // first layout's map already beats `current` (and `rival`). Of the realistic set's 30 trials, the 18 that
-  // won did so on their first layout, and the later layouts of those that lost cost up to 7 s a pair
-  // (SHREC'19 1 [29 anthropometric]); on TOSCA's centaur0/1 a winner still folded, and its second
-  // layout took it from E_L2 1.50 to 1.09.
+  // first layout's map already beats `current` (and `also_beat`). Of the realistic set's 30 trials,
+  // the 18 that won did so on their first layout, and the later layouts of those that lost cost up
+  // to 7 s a pair (SHREC'19 1 [29 anthropometric]); on TOSCA's centaur0/1 a winner still folded, and
+  // its second layout took it from E_L2 1.50 to 1.09.
   const auto wins = [&](const PairMapping& map) {
-    return better_with_tips(map, current.map) && (!rival || better_with_tips(map, *rival));
+    return better_with_tips(map, current.map) && (!also_beat || better_with_tips(map, *also_beat));
   };
   std::optional<PairMapping> trial =
       map_if_possible(in.source, tipped.source_anchors, in.target, tipped.target_anchors, in.curves, settings,
@@ -680,7 +680,8 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   // threshold tells them apart: the winner is tried against a map without the tip that missed
   // most, when it missed by more than twice the reach, the rest matched again without it, and
   // the better kept (that pair: E_L2 1.03). One tip, not every doubtful one: on SHREC'19 1 [29]
-  // the map without two (the wrong fingertip and another tip) folds 5 faces, without the wrong one none.
+  // the map without two (the wrong fingertip and another tip) folds 5 faces, without the wrong
+  // one none.
   const auto missed = [](const ExtremityAnchor& tip) { return std::max(tip.miss[0], tip.miss[1]); };
   const auto worst = std::max_element(
       through_map.begin(), through_map.end(),
