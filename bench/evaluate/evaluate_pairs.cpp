@@ -203,10 +203,11 @@ std::vector<PairSpec> pair_list() {
                             "landmark_pairs_schmidt2023/hand/hand_vulcan.obj",
                             "landmark_pairs_schmidt2023/hand/hand_plain.pinned",
                             "landmark_pairs_schmidt2023/hand/hand_vulcan_0.pinned", false));
-  // FAUST template (subject 0, pose 0) against three other subjects, each decimated from 6890
-  // to 6000 vertices.
+  // FAUST template (subject 0, pose 0) against every other subject whose registration the data
+  // holds, each decimated from 6890 to 6000 vertices.
   const std::vector<std::pair<std::string, std::string>> faust = {
-      {"010", "(subject)"}, {"030", "(subject)"}, {"090", "(subject, pose)"}};
+      {"010", "(subject)"}, {"020", "(subject)"}, {"030", "(subject)"},
+      {"040", "(subject)"}, {"080", "(subject)"}, {"090", "(subject, pose)"}};
   for (const auto& [subject, label] : faust)
     for (const std::string landmarks : {"73 CAESAR", "29 anthropometric", "72 scan"})
       list.push_back(faust_decimated_pair(subject, label, 6000, landmarks));
