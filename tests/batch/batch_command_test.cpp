@@ -172,5 +172,18 @@ TEST(BatchCommand, AnArchiveOlderThanAStagesSwitchResumesWithTheStageOffOnly) {
   expect_continued(dir, archive, run + " --work-vertices 0");
 }
 
+// Likewise a retry made by default: archives from before the map without a doubtful tip continue
+// without it only.
+TEST(BatchCommand, AnArchiveOlderThanTheDoubtfulTipRetryResumesWithoutItOnly) {
+  const path dir = test::fresh_temp_dir("command_resume_older_retry");
+  test::copy_sample_targets(dir / "targets", {"woman"});
+  const path archive = dir / "old.h5";
+  write_archive_predating("retry_doubtful_tips", archive, dir / "targets");
+  const std::string run = resume_command(dir, archive);
+  expect_refused(dir, archive, run,
+                 "option \"retry_doubtful_tips\" is not recorded (the archive predates it: false), now true");
+  expect_continued(dir, archive, run + " --no-retry-doubtful-tips");
+}
+
 }  // namespace
 }  // namespace xparam
