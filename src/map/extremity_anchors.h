@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
@@ -59,10 +60,11 @@ struct ExtremityAnchor {
   std::array<double, 2> miss{};
   TipMatching matched_by = TipMatching::through_map;
 
-  double mismatch() const { return miss[0] + miss[1]; }  ///< both misses, summed
+  double mismatch() const { return miss[0] + miss[1]; }              ///< both misses, summed
+  double larger_miss() const { return std::max(miss[0], miss[1]); }  ///< the farther of the two
   /// Whether the first map already carries the tips to each other within `reach` (a fraction of
   /// sqrt(area)) on both meshes.
-  bool carried_within(double reach) const { return miss[0] <= reach && miss[1] <= reach; }
+  bool carried_within(double reach) const { return larger_miss() <= reach; }
 };
 
 /// The map the tips are matched through: template vertex i lies at `images[i]` on the target;

@@ -682,10 +682,9 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   // the better kept (that pair: E_L2 1.03). One tip, not every doubtful one: on SHREC'19 1 [29]
   // the map without two (the wrong fingertip and another tip) folds 5 faces, without the wrong
   // one none.
-  const auto missed = [](const ExtremityAnchor& tip) { return std::max(tip.miss[0], tip.miss[1]); };
   const auto worst = std::max_element(
       through_map.begin(), through_map.end(),
-      [&](const ExtremityAnchor& a, const ExtremityAnchor& b) { return missed(a) < missed(b); });
+      [](const ExtremityAnchor& a, const ExtremityAnchor& b) { return a.larger_miss() < b.larger_miss(); });
   if (worst == through_map.end() || worst->carried_within(2.0 * in.settings.tip_reach)) return tipped;
   std::vector<ExtremityAnchor> others(through_map.begin(), worst);
   others.insert(others.end(), std::next(worst), through_map.end());
