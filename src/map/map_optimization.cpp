@@ -93,23 +93,26 @@ MapOptimizationResult MapOptimizer::run() {
   // measured again after each refresh of the coverage pulls: the recorded energy never rises
   // between refreshes.
   refresh_coverage();
-  double energy = total_energy();
-  result.energy.push_back(energy);
+  EnergySum energy = total_energy();
+  result.energy.push_back(energy.total);
   std::fill(moved_.begin(), moved_.end(), 1);
   double coverage = total_coverage_energy();
   for (int since_refresh = 0, sweeps_left = settings_.max_sweeps; sweeps_left > 0; --sweeps_left) {
     bool any_moved = sweep();
     any_moved = slide_in_face_anchors() || any_moved;
     ++result.sweeps;
-    const double was = energy;
+    const EnergySum was = energy;
     const double coverage_was = coverage;
     energy = total_energy();
     coverage = total_coverage_energy();
-    result.energy.push_back(energy);
-    // Converged when the sweep barely lowered the energy and, while the remesh leaves target
-    // vertices out, their pull too (small against the distortion, but what opens a finger).
-    const bool converged = !any_moved || (was - energy <= settings_.tolerance * was &&
-                                          coverage_was - coverage <= kCoverageTolerance * coverage_was);
+    result.energy.push_back(energy.total);
+    // Converged when the sweep barely lowered the energy of the faces that do not fold (the
+    // folded ones' constant would hide it) and, while the remesh leaves target vertices out,
+    // their pull too (small against the distortion, but what opens a finger).
+    const double tolerance = settings_.tolerance * was.unfolded();
+    const bool converged =
+        !any_moved || (was.total - energy.total <= tolerance &&
+                       coverage_was - coverage <= std::max(kCoverageTolerance * coverage_was, tolerance));
     // The pulls are found again every coverage_refresh sweeps, and before stopping: the run
     // ends only at a sweep right after a refresh that lowered nothing.
     ++since_refresh;
@@ -121,7 +124,7 @@ MapOptimizationResult MapOptimizer::run() {
       energy = total_energy();
       coverage = total_coverage_energy();
       result.refreshed.push_back(static_cast<int>(result.energy.size()));
-      result.energy.push_back(energy);
+      result.energy.push_back(energy.total);
       continue;
     }
     if (converged) break;
@@ -133,11 +136,11 @@ MapOptimizationResult MapOptimizer::run() {
   for (int round = 0; round < kOpeningRounds; ++round) {
     std::fill(moved_.begin(), moved_.end(), 0);
     if (!open_remaining_folds()) break;
-    result.energy.push_back(total_energy());
+    result.energy.push_back(total_energy().total);
     for (int sweeps_left = std::min(kSweepsAfterOpening, settings_.max_sweeps); sweeps_left > 0 && sweep();
          --sweeps_left) {
       ++result.sweeps;
-      result.energy.push_back(total_energy());
+      result.energy.push_back(total_energy().total);
     }
   }
   result.flipped_after = count_folded();
@@ -328,12 +331,15 @@ void MapOptimizer::refresh_coverage() {
   }
 }
 
-double MapOptimizer::total_energy() const {
-  std::vector<double> energies(faces_.size());
+MapOptimizer::EnergySum MapOptimizer::total_energy() const {
+  std::vector<FaceValue> values(faces_.size());
   tbb::parallel_for(0, static_cast<int>(faces_.size()),
-                    [&](int f) { energies[f] = face_value(f, reference_normal(f), -1, {}).energy; });
-  double sum = 0.0;
-  for (double e : energies) sum += e;  // in face order: the same at any thread count
+                    [&](int f) { values[f] = face_value(f, reference_normal(f), -1, {}); });
+  EnergySum sum;
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {  // in face order: the same at any thread count
+    sum.total += values[f].energy;
+    if (values[f].folded) sum.folded += weight_[f] * kFoldedFaceEnergy;
+  }
   return sum;
 }
 
@@ -460,7 +466,7 @@ bool MapOptimizer::move_vertex(int v) {
         -(eigen.eigenvectors() * values.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose()) *
         gradient;
   }
-  // Never farther than half an edge in one step: the step stays near the ring.
+  // No Newton step longer than half an edge (over-relaxed, a little more): it stays near the ring.
   const double length = direction.norm();
   if (!(length > 0.0) || !std::isfinite(length)) return false;
   if (length > 0.5 * mean_edge) direction *= 0.5 * mean_edge / length;
@@ -469,8 +475,9 @@ bool MapOptimizer::move_vertex(int v) {
 
   const Eigen::Vector3d step = direction.x() * tangent.u + direction.y() * tangent.v;
   std::vector<FaceReferences> moved_references(ring.size());
-  double fraction = 1.0;
-  for (int tries = 0; tries < 12; ++tries, fraction *= 0.5) {
+  // Over-relaxed first, then the whole step, then halved (MapOptimizationSettings::over_relaxation).
+  double fraction = settings_.over_relaxation;
+  for (int tries = 0; tries<13; ++tries, fraction = fraction> 1.0 ? 1.0 : 0.5 * fraction) {
     const std::optional<SurfacePoint> there = walk_on_surface(target_, here, fraction * step);
     if (!there) continue;
     const Eigen::Vector3d y = position(target_, *there);

@@ -31,8 +31,9 @@
 ///
 /// Block coordinate descent: one vertex at a time, its neighbours held, a Newton step in the
 /// plane of the target face under its image (finite-difference Hessian of the analytic gradient,
-/// made positive definite), walked along the target surface (core/surface_walk.h), with a
-/// backtracking line search that takes only steps that lower its faces' energy. Vertices are
+/// made positive definite), over-relaxed (MapOptimizationSettings::over_relaxation), walked along
+/// the target surface (core/surface_walk.h), with a backtracking line search that takes only
+/// steps that lower its faces' energy. Vertices are
 /// coloured so no two of one colour share a face; a colour's vertices move in parallel, the
 /// colours in order, so the result is the same at any thread count.
 ///
@@ -64,7 +65,9 @@ namespace xparam {
 /// Options of optimize_map.
 struct MapOptimizationSettings {
   int max_sweeps = 100;      ///< sweeps over every free vertex, at most
-  double tolerance = 1e-4;   ///< stop when a sweep lowers the mean energy by less than this fraction of it
+  /// stop when a sweep lowers the energy by less than this fraction of the unfolded faces' part
+  /// of it (with the coverage term)
+  double tolerance = 1e-4;
   double area_weight = 1.0;  ///< lambda: the area term's weight against the conformal term
   /// Weight of the coverage term against the distortion (0: none). Each target vertex farther
   /// than half of kUncoveredGap sqrt(target area) from the remesh (map/remesh_coverage.h) pulls
@@ -73,6 +76,12 @@ struct MapOptimizationSettings {
   /// off, this can.
   double coverage_weight = 10.0;
   int coverage_refresh = 10;  ///< sweeps between finding each uncovered target vertex's nearest remesh point again
+  /// Each vertex's step is first tried this many times its Newton step (successive
+  /// over-relaxation; 1: none), then whole, then halved. Descent one vertex at a time removes a
+  /// smooth, long-wavelength error slowly; overshooting each vertex's own minimum carries it on
+  /// faster. Measured on the realistic and table sets (session 28): 1.8 against 1: TOSCA
+  /// horse0/wolf0's first map reaches in 25 sweeps the energy 1 reaches in 100.
+  double over_relaxation = 1.8;
 };
 
 /// A template vertex whose image is tied to a target landmark.

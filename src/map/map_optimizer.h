@@ -139,7 +139,13 @@ class MapOptimizer {
   // nearest to it.
   void refresh_coverage();
 
-  double total_energy() const;
+  // The energy optimize_map lowers, and the part of it the folded faces' constant makes.
+  struct EnergySum {
+    double total = 0.0;
+    double folded = 0.0;
+    double unfolded() const { return total - folded; }
+  };
+  EnergySum total_energy() const;
 
   // The energy per template area over the faces that do not fold.
   double mean_unfolded_energy() const;

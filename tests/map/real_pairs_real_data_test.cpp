@@ -418,12 +418,12 @@ TEST(ShrecHuman, TheWristsCellPullsTheSqueezedHandOut) {
 }
 
 // SHREC'19 shape 18 with the 29 anthropometric landmarks: the first round of tips pulls the left
-// hand's fingers out of the wrist but not its thumb, which the map through them squeezes into
-// the palm (two spirals of small faces, looked at) and leaves the target's thumb uncovered; a
-// second round matches the thumb through that map and maps again through it too. Measured:
-// target vertices farther than the coverage gap from the remesh 21 -> 2, the largest gap 1.8 ->
-// 1.1% of sqrt(area), E_L2 1.060 -> 1.047; the left hand's mean distance to the truth stays
-// about 3 cm (3.03 -> 3.08), so it is not asserted.
+// hand's fingers out of the wrist but not its thumb, which the map through them squeezes towards
+// the palm; a second round matches the thumb through that map and maps again through it too.
+// Measured: tips 7 -> 11, E_L2 1.047 -> 1.040, the left hand's mean distance to the truth 3.0 ->
+// 2.6 cm. (Before the map optimization was over-relaxed, session 28, the first round's map also
+// left the target's thumb uncovered: 21 target vertices farther than the coverage gap from the
+// remesh, 2 after the second round; now 1 and 1.)
 TEST(ShrecHuman, ASecondRoundOfTipsFindsTheThumb) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
@@ -442,8 +442,8 @@ TEST(ShrecHuman, ASecondRoundOfTipsFindsTheThumb) {
             << first.coverage.max_gap << " -> " << second.coverage.max_gap << ", uncovered "
             << first.coverage.uncovered_vertices << " -> " << second.coverage.uncovered_vertices << "\n";
   EXPECT_GT(second.extremity_anchors.size(), first.extremity_anchors.size());
-  EXPECT_LT(second.coverage.uncovered_vertices, first.coverage.uncovered_vertices / 2);
-  EXPECT_LT(second.coverage.max_gap, first.coverage.max_gap);
+  EXPECT_LT(hand_error(shrec, second, kLeft), 0.95 * hand_error(shrec, first, kLeft));
+  EXPECT_LE(second.coverage.uncovered_vertices, 2);
   EXPECT_LT(second.distortion.all.e_l2, first.distortion.all.e_l2);
   EXPECT_EQ(second.quality.strictly_folded_faces, 0);
 }
