@@ -247,7 +247,7 @@ class Gluing {
     const PointLocator locator(mesh.target_uv, mesh.target.triangles);
     const TargetPatchView target{&mesh.target, &mesh.target_uv, &locator};
     const MapRelaxationResult relaxed =
-        relax_patch_map(mesh.source, mesh.source_uv, target, input_.scale, how);
+        input_.relaxations->relax_patch_map(mesh.source, mesh.source_uv, target, input_.scale, how);
     chart.energy = relaxed.energy_after;
     chart.area = relaxed.area;
     for (size_t i = 0; i < chart.patches.size(); ++i) {
@@ -365,7 +365,8 @@ class Gluing {
 }  // namespace
 
 std::vector<GluedChart> glue_charts(const GluingInput& input, const GluingSettings& settings) {
-  XP_ASSERT(input.layout && input.sides && input.target_params && input.source_in_target);
+  XP_ASSERT(input.layout && input.sides && input.target_params && input.source_in_target &&
+            input.relaxations);
   if (!settings.enabled) return {};
   return Gluing(input, settings).run();
 }

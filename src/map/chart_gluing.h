@@ -25,6 +25,7 @@
 #include "layout/layout.h"
 #include "param/map_relaxation.h"
 #include "param/patch_parameterization.h"
+#include "param/relaxation_memo.h"
 
 #include <Eigen/Core>
 
@@ -54,6 +55,7 @@ struct GluingInput {
   std::vector<double> energy;  ///< #patches: symmetric Dirichlet energy of that placement (A_f * SD summed)
   std::vector<double> area;    ///< #patches: template patch area
   double scale = 1.0;          ///< target / template length ratio
+  RelaxationMemo* relaxations = nullptr;  ///< where the charts' relaxations are made (and remembered)
 };
 
 /// Patches laid out in one plane and relaxed together.

@@ -125,9 +125,11 @@ struct CrossMap::Impl {
 };
 
 CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& inputs,
-                   const CrossMapSettings& settings)
+                   const CrossMapSettings& settings, RelaxationMemo* relaxations)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
+  RelaxationMemo own_relaxations;
+  RelaxationMemo& memo = relaxations ? *relaxations : own_relaxations;
   m.layout = &layout;
   m.inputs = inputs;
   for (int side = 0; side < 2; ++side) {
@@ -142,9 +144,9 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
   for (int side = 0; side < 2; ++side) m.mean_value[side].resize(layout.patches.size());
   if (settings.relax) {
     const int n = static_cast<int>(layout.patches.size());
-    auto relax_own = [&m](int side, int p, const MapRelaxationSettings& how) {
+    auto relax_own = [&m, &memo](int side, int p, const MapRelaxationSettings& how) {
       MapRelaxationResult own =
-          relax_patch_parameterization(m.sides[side].patches[p], m.params[side][p].uv, how);
+          memo.relax_patch_parameterization(m.sides[side].patches[p], m.params[side][p].uv, how);
       if (own.iterations == 0) return;
       m.mean_value[side][p] = std::move(m.params[side][p].uv);
       m.params[side][p].uv = std::move(own.uv);
@@ -177,7 +179,7 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
     if (!settings.relax) return;
     std::vector<Eigen::Vector2d>& uv = m.source_in_target[p];
     const TargetPatchView target{&m.sides[1].patches[p], &m.params[1][p].uv, &*m.target_locators[p]};
-    relaxed[p] = relax_patch_map(m.sides[0].patches[p], uv, target, scale, settings.relaxation);
+    relaxed[p] = memo.relax_patch_map(m.sides[0].patches[p], uv, target, scale, settings.relaxation);
     if (relaxed[p].iterations > 0) {
       uv = std::move(relaxed[p].uv);
       m.relaxed_placement[p] = 1;
@@ -189,7 +191,7 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
       for (int p = 0; p < n_patches; ++p)
         m.relaxation.parameterizations[side] += !m.mean_value[side][p].empty();
     }
-    GluingInput gluing{&layout, &m.sides, &m.params[1], &m.source_in_target, {}, {}, scale};
+    GluingInput gluing{&layout, &m.sides, &m.params[1], &m.source_in_target, {}, {}, scale, &memo};
     for (const MapRelaxationResult& patch : relaxed) {
       gluing.energy.push_back(patch.energy_after);
       gluing.area.push_back(patch.area);

@@ -23,6 +23,7 @@
 #include "param/map_relaxation.h"
 #include "param/patch_parameterization.h"
 #include "param/point_locator.h"
+#include "param/relaxation_memo.h"
 
 #include <Eigen/Core>
 
@@ -78,12 +79,14 @@ class CrossMap {
   /// Parameterize every patch of both sides (in parallel) and relax the squeezed ones on their
   /// own, index the target domains, place each template patch in its target domain and relax it
   /// there, then glue patches still far from an isometry to neighbours (map/chart_gluing.h).
-  /// `inputs[s]` is the input mesh side s was refined from.
+  /// `inputs[s]` is the input mesh side s was refined from. `relaxations`, when given, holds the
+  /// patch relaxations other cross maps of the same pair made, to reuse where a patch and its
+  /// start are the same (and receives this one's); it must outlive the constructor only.
   /// \pre layout consistent (check_layout, with triangles = false after merging) and patch ids
   ///   assigned on both sides
   /// \throw ParamError when a patch cannot be parameterized
   CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& inputs,
-           const CrossMapSettings& settings = {});
+           const CrossMapSettings& settings = {}, RelaxationMemo* relaxations = nullptr);
   ~CrossMap();
   CrossMap(CrossMap&&) noexcept;
   CrossMap& operator=(CrossMap&&) noexcept;

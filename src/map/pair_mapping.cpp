@@ -88,16 +88,19 @@ std::vector<int> patches_of_folds(const std::vector<std::array<int, 3>>& faces,
   return patches;
 }
 
-// The whole maps (a layout built, optimized, parameterized, composed and optimized on the
-// target) a pair may still make (PairSettings::max_maps): the first map is always made, a retry
-// only while some are left. Counted in maps, not seconds, so the results stay deterministic.
-struct MapBudget {
-  int left = 0;
+// What the maps of one pair share. The whole maps (a layout built, optimized, parameterized,
+// composed and optimized on the target) it may still make (PairSettings::max_maps): the first map
+// is always made, a retry only while some are left; counted in maps, not seconds, so the results
+// stay deterministic. And the patch relaxations made so far, which later maps reuse where a patch
+// and its start are the same (param/relaxation_memo.h).
+struct PairWork {
+  int maps_left = 0;
   bool reached = false;  // a retry was not made for want of maps
+  RelaxationMemo relaxations;
 
-  bool allows_another() {
-    if (left <= 0) reached = true;
-    return left > 0;
+  bool allows_another_map() {
+    if (maps_left <= 0) reached = true;
+    return maps_left > 0;
   }
 };
 
@@ -156,9 +159,9 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
                        const std::vector<std::array<int, 3>>& faces, const Mesh& target,
                        const std::array<PlacedAnchors, 2>& anchors, const std::array<const Mesh*, 2>& refined,
                        const DomainOptimizationSettings& optimization, const PairSettings& settings,
-                       PairSeconds& seconds, MapBudget& budget, const std::function<void(const char*)>& stage,
+                       PairSeconds& seconds, PairWork& work, const std::function<void(const char*)>& stage,
                        const std::vector<const Layout*>& mapped_before = {}) {
-  --budget.left;
+  --work.maps_left;
   MapAttempt attempt;
   attempt.layout = &layout_storage;
   Stopwatch watch;
@@ -177,8 +180,8 @@ MapAttempt attempt_map(ConsistentLayoutResult& layout_storage, const Mesh& sourc
   if (attempt.repeats) return attempt;
 
   stage("parameterize");
-  attempt.cross =
-      std::make_unique<CrossMap>(layout, std::array<const Mesh*, 2>{&source, &target}, settings.cross_map);
+  attempt.cross = std::make_unique<CrossMap>(layout, std::array<const Mesh*, 2>{&source, &target},
+                                             settings.cross_map, &work.relaxations);
   CrossMap& cross = *attempt.cross;
   seconds.relax += cross.relaxation().seconds;
   seconds.parameterize += watch.lap();
@@ -328,8 +331,7 @@ void fill_map(PairMapping& result, const MapAttempt& attempt, const Mesh& source
 // layouts are tried only if `worth_retrying` (when given) accepts that map.
 PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
                                 const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
-                                const PairSettings& settings, MapBudget& budget,
-                                const StageCallback& on_stage,
+                                const PairSettings& settings, PairWork& work, const StageCallback& on_stage,
                                 const std::function<bool(const PairMapping&)>& worth_retrying = {}) {
   const auto stage = [&](const char* name) {
     if (on_stage) on_stage(name);
@@ -351,7 +353,7 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
   const std::vector<std::array<int, 3>> faces = triangles_of(source);
   const std::vector<std::string> names = anchor_names(result.anchors[0]);
   MapAttempt attempt = attempt_map(result.layout, source, faces, target, result.anchors, refined,
-                                   settings.optimization, settings, result.seconds, budget, stage);
+                                   settings.optimization, settings, result.seconds, work, stage);
   // The later attempts' layouts, when there are any (a CrossMap points into its layout).
   std::array<ConsistentLayoutResult, 2> later_layouts;
   // Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
@@ -380,11 +382,11 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
     DomainOptimizationSettings keeping = first;
     keeping.stretching.keep_corners = true;
     std::vector<const Layout*> mapped = {&result.layout.layout};
-    for (std::size_t k = 0; k < corners_kept_at.size() && attempt.folds() > 0 && budget.allows_another();
+    for (std::size_t k = 0; k < corners_kept_at.size() && attempt.folds() > 0 && work.allows_another_map();
          ++k) {
       keeping.stretching.keep_corners_at = corners_kept_at[k];
       MapAttempt later = attempt_map(later_layouts[k], source, faces, target, result.anchors, refined,
-                                     keeping, settings, result.seconds, budget, stage, mapped);
+                                     keeping, settings, result.seconds, work, stage, mapped);
       ++result.layouts_built;
       if (later.repeats) continue;
       mapped.push_back(&later_layouts[k].layout);
@@ -431,10 +433,10 @@ bool folds_less(const PairMapping& other, const PairMapping& current) {
 // map_through_anchors, or nothing when those anchors cannot be laid out or parameterized.
 std::optional<PairMapping> map_if_possible(
     const Mesh& source, const AnchorSet& source_anchors, const Mesh& target, const AnchorSet& target_anchors,
-    const std::vector<FeatureCurve>& curves, const PairSettings& settings, MapBudget& budget,
+    const std::vector<FeatureCurve>& curves, const PairSettings& settings, PairWork& work,
     const StageCallback& on_stage, const std::function<bool(const PairMapping&)>& worth_retrying = {}) {
   try {
-    return map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, budget,
+    return map_through_anchors(source, source_anchors, target, target_anchors, curves, settings, work,
                                on_stage, worth_retrying);
   } catch (const LayoutError&) {
     return std::nullopt;
@@ -450,7 +452,7 @@ struct PairInputs {
   const std::vector<FeatureCurve>& curves;
   const PairSettings& settings;
   const StageCallback& on_stage;
-  MapBudget& budget;
+  PairWork& work;
 };
 
 // A map and the anchor sets it was made through.
@@ -472,7 +474,7 @@ std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const 
   const std::vector<std::string> names = anchor_names(current.map.anchors[0]);
   for (const double reach : in.settings.tip_anchor_reaches) {
     const PairMapping& to_beat = best ? best->map : current.map;
-    if (to_beat.quality.flipped_faces.empty() || !in.budget.allows_another()) break;
+    if (to_beat.quality.flipped_faces.empty() || !in.work.allows_another_map()) break;
     std::vector<TipAnchor> helpers = tip_anchors(current.map.layout.layout, {&in.source, &in.target}, names,
                                                  current.map.mismatched_corners, reach);
     AnchoredMap helped{{}, current.source_anchors, current.target_anchors};
@@ -483,7 +485,7 @@ std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const 
     if (in.on_stage) in.on_stage("mapping again with helper anchors behind the tips");
     std::optional<PairMapping> trial =
         map_if_possible(in.source, helped.source_anchors, in.target, helped.target_anchors, in.curves,
-                        in.settings, in.budget, in.on_stage);
+                        in.settings, in.work, in.on_stage);
     if (!trial) continue;
     seconds.add_stages(trial->seconds);
     if (!folds_less(*trial, to_beat)) continue;
@@ -565,7 +567,7 @@ bool better_with_tips(const PairMapping& other, const PairMapping& current) {
 std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, const AnchoredMap& current,
                                                       std::vector<ExtremityAnchor> tips, PairSeconds& seconds,
                                                       const PairMapping* also_beat = nullptr) {
-  if (tips.empty() || !in.budget.allows_another()) return std::nullopt;
+  if (tips.empty() || !in.work.allows_another_map()) return std::nullopt;
   AnchoredMap tipped{{}, current.source_anchors, current.target_anchors};
   for (const ExtremityAnchor& tip : tips) {
     tipped.source_anchors.anchors.push_back(tip.specs[0]);
@@ -587,7 +589,7 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
   };
   std::optional<PairMapping> trial =
       map_if_possible(in.source, tipped.source_anchors, in.target, tipped.target_anchors, in.curves, settings,
-                      in.budget, in.on_stage, wins);
+                      in.work, in.on_stage, wins);
   if (!trial) return std::nullopt;
   seconds.add_stages(trial->seconds);
   if (!wins(*trial)) return std::nullopt;
@@ -711,14 +713,14 @@ std::optional<AnchoredMap> release_anchors(const PairInputs& in, const AnchoredM
     bool helped = false;
     const std::vector<AnchorFolds> candidates = current.map.folds_by_anchor;
     for (const AnchorFolds& candidate : candidates) {
-      if (!in.budget.allows_another()) break;
+      if (!in.work.allows_another_map()) break;
       AnchoredMap fewer{{},
                         without_anchor(current.source_anchors, candidate.name),
                         without_anchor(current.target_anchors, candidate.name)};
       if (in.on_stage) in.on_stage("mapping again without anchor \"" + candidate.name + "\"");
       std::optional<PairMapping> trial =
           map_if_possible(in.source, fewer.source_anchors, in.target, fewer.target_anchors, in.curves,
-                          in.settings, in.budget, in.on_stage);
+                          in.settings, in.work, in.on_stage);
       if (!trial) continue;  // the anchors left cannot be laid out or parameterized: this anchor stays
       seconds.add_stages(trial->seconds);
       if (!folds_less(*trial, current.map)) continue;
@@ -765,10 +767,11 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   // One map is kept back for the helper anchors at protrusion tips, tried last on the map the
   // retries below leave (which it must beat).
   const int kept_back = settings.extremity_anchors && settings.max_maps > 1 ? 1 : 0;
-  MapBudget budget{settings.max_maps - kept_back};
-  const PairInputs in{source, mapped, curves, settings, on_stage, budget};
+  PairWork work;
+  work.maps_left = settings.max_maps - kept_back;
+  const PairInputs in{source, mapped, curves, settings, on_stage, work};
   AnchoredMap plain{
-      map_through_anchors(source, source_anchors, mapped, mapped_anchors, curves, settings, budget, on_stage),
+      map_through_anchors(source, source_anchors, mapped, mapped_anchors, curves, settings, work, on_stage),
       source_anchors, mapped_anchors};
   PairSeconds seconds = plain.map.seconds;
   std::optional<AnchoredMap> best;  // a map that folds less than `plain`, when one was found
@@ -787,7 +790,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     if (released && folds_less(released->map, so_far)) best = std::move(released);
   }
   if (settings.extremity_anchors) {
-    budget.left += kept_back;
+    work.maps_left += kept_back;
     std::optional<AnchoredMap> tipped;
     for (int round = 0; round < settings.tip_rounds; ++round) {
       const AnchoredMap& last = tipped ? *tipped : best ? *best : plain;
@@ -818,8 +821,8 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
         miss_distance(anchor.name, plain.map.anchors, source, target, result.remesh_vertices);
   result.seconds = seconds;
   result.seconds.total = total.lap();
-  result.maps_made = settings.max_maps - budget.left;
-  result.map_limit_reached = budget.reached;
+  result.maps_made = settings.max_maps - work.maps_left;
+  result.map_limit_reached = work.reached;
   return result;
 }
 
