@@ -476,8 +476,9 @@ bool MapOptimizer::move_vertex(int v) {
   const Eigen::Vector3d step = direction.x() * tangent.u + direction.y() * tangent.v;
   std::vector<FaceReferences> moved_references(ring.size());
   // Over-relaxed first, then the whole step, then halved (MapOptimizationSettings::over_relaxation).
+  const auto next_fraction = [](double fraction) { return fraction > 1.0 ? 1.0 : 0.5 * fraction; };
   double fraction = settings_.over_relaxation;
-  for (int tries = 0; tries<13; ++tries, fraction = fraction> 1.0 ? 1.0 : 0.5 * fraction) {
+  for (int tries = 0; tries < 13; ++tries, fraction = next_fraction(fraction)) {
     const std::optional<SurfacePoint> there = walk_on_surface(target_, here, fraction * step);
     if (!there) continue;
     const Eigen::Vector3d y = position(target_, *there);
