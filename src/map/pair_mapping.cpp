@@ -596,6 +596,7 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
   tipped.map = std::move(*trial);
   tipped.map.extremity_anchors = current.map.extremity_anchors;
   tipped.map.extremity_anchors.insert(tipped.map.extremity_anchors.end(), tips.begin(), tips.end());
+  tipped.map.doubtful_tips = current.map.doubtful_tips;
   return tipped;
 }
 
@@ -694,7 +695,9 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   if (same_tips(without_doubtful, tips)) return tipped;  // the doubtful one matched again otherwise
   std::optional<AnchoredMap> without =
       map_with_extremity_anchors(in, current, without_doubtful, seconds, &tipped->map);
-  return without ? without : tipped;
+  if (!without) return tipped;
+  without->map.doubtful_tips.push_back(*worst);
+  return without;
 }
 
 // A map through `start`'s anchors less some released one at a time, when `start` folds

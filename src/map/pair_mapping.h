@@ -211,6 +211,10 @@ struct PairMapping {
   /// The helper anchors at protrusion tips the map passes through (PairSettings::extremity_anchors);
   /// empty unless they made it better. They are among `anchors`.
   std::vector<ExtremityAnchor> extremity_anchors;
+  /// Tips a round matched through the map before it and the kept map was made without
+  /// (PairSettings::retry_doubtful_tips): the map carried each farthest from its partner, by
+  /// more than twice tip_reach, and the map without it won. Not among `anchors`.
+  std::vector<ExtremityAnchor> doubtful_tips;
   /// The anchors the map no longer passes through, in the order they were released; empty
   /// unless PairSettings::max_released_anchors > 0 and the map with every anchor folds.
   std::vector<ReleasedAnchor> released_anchors;

@@ -207,9 +207,11 @@ void WorkingCopy::carry_back(PairMapping& mapping, const Mesh& source, const std
   }
   for (TipAnchor& helper : mapping.tip_anchors)
     helper.specs[1].location = on_target(std::get<SurfacePoint>(helper.specs[1].location)).location;
-  for (ExtremityAnchor& tip : mapping.extremity_anchors) {
-    AnchorVertex& vertex = std::get<AnchorVertex>(tip.specs[1].location);
-    vertex.index = copy_.source_vertex[vertex.index];
+  for (std::vector<ExtremityAnchor>* tips : {&mapping.extremity_anchors, &mapping.doubtful_tips}) {
+    for (ExtremityAnchor& tip : *tips) {
+      AnchorVertex& vertex = std::get<AnchorVertex>(tip.specs[1].location);
+      vertex.index = copy_.source_vertex[vertex.index];
+    }
   }
 
   std::vector<Eigen::Vector3d> remesh(n_vertices);
