@@ -148,41 +148,41 @@ void expect_refused(const path& dir, const path& archive, const std::string& run
   EXPECT_EQ(test::read_file(archive), before);
 }
 
-TEST(BatchCommand, AnArchiveOlderThanAnOptionResumesAtItsDefaultOnly) {
-  const path dir = test::fresh_temp_dir("command_resume_older_options");
+// An archive written before `option` was recorded: resuming it with `refused` added is refused
+// with `message` (the archive byte-identical), with `continued` added it goes on.
+void expect_resumed_as_it_was_only(const std::string& option, const std::string& refused,
+                                   const std::string& message, const std::string& continued) {
+  const path dir = test::fresh_temp_dir("command_resume_older_" + option);
   test::copy_sample_targets(dir / "targets", {"woman"});
   const path archive = dir / "old.h5";
-  write_archive_predating("max_maps", archive, dir / "targets");
+  write_archive_predating(option, archive, dir / "targets");
   const std::string run = resume_command(dir, archive);
-  expect_refused(dir, archive, run + " --max-maps 4",
-                 "option \"max_maps\" is not recorded (the archive predates it: 6), now 4");
-  expect_continued(dir, archive, run);
+  expect_refused(dir, archive, run + refused, message);
+  expect_continued(dir, archive, run + continued);
+}
+
+TEST(BatchCommand, AnArchiveOlderThanAnOptionResumesAtItsDefaultOnly) {
+  expect_resumed_as_it_was_only("max_maps", " --max-maps 4",
+                                "option \"max_maps\" is not recorded (the archive predates it: 6), now 4",
+                                "");
 }
 
 // A stage that came with its own switch, on by default, did not run before it: such an archive
 // continues with the stage off only.
 TEST(BatchCommand, AnArchiveOlderThanAStagesSwitchResumesWithTheStageOffOnly) {
-  const path dir = test::fresh_temp_dir("command_resume_older_stage");
-  test::copy_sample_targets(dir / "targets", {"woman"});
-  const path archive = dir / "old.h5";
-  write_archive_predating("work_vertices", archive, dir / "targets");
-  const std::string run = resume_command(dir, archive);
-  expect_refused(dir, archive, run,
-                 "option \"work_vertices\" is not recorded (the archive predates it: 0), now 100000");
-  expect_continued(dir, archive, run + " --work-vertices 0");
+  expect_resumed_as_it_was_only(
+      "work_vertices", "",
+      "option \"work_vertices\" is not recorded (the archive predates it: 0), now 100000",
+      " --work-vertices 0");
 }
 
 // Likewise a retry made by default: archives from before the map without a doubtful tip continue
 // without it only.
 TEST(BatchCommand, AnArchiveOlderThanTheDoubtfulTipRetryResumesWithoutItOnly) {
-  const path dir = test::fresh_temp_dir("command_resume_older_retry");
-  test::copy_sample_targets(dir / "targets", {"woman"});
-  const path archive = dir / "old.h5";
-  write_archive_predating("retry_doubtful_tips", archive, dir / "targets");
-  const std::string run = resume_command(dir, archive);
-  expect_refused(dir, archive, run,
-                 "option \"retry_doubtful_tips\" is not recorded (the archive predates it: false), now true");
-  expect_continued(dir, archive, run + " --no-retry-doubtful-tips");
+  expect_resumed_as_it_was_only(
+      "retry_doubtful_tips", "",
+      "option \"retry_doubtful_tips\" is not recorded (the archive predates it: false), now true",
+      " --no-retry-doubtful-tips");
 }
 
 }  // namespace
