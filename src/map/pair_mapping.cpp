@@ -465,9 +465,11 @@ struct AnchoredMap {
 // A map through `current`'s anchors plus helper anchors behind its tips, when `current` folds and
 // its corners disagree (PairSettings::tip_anchors): each of tip_anchor_reaches in turn until a
 // map has no fold, a map replacing the best so far when it folds less. Nothing when no try
-// folds less than `current`.
-std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const AnchoredMap& current,
-                                                    PairSeconds& seconds) {
+// folds less than `current`. A try's later layouts are made only if `worth_retrying` (when given)
+// accepts its first layout's map.
+std::optional<AnchoredMap> with_helpers_behind_tips(
+    const PairInputs& in, const AnchoredMap& current, PairSeconds& seconds,
+    const std::function<bool(const PairMapping&)>& worth_retrying = {}) {
   std::optional<AnchoredMap> best;
   if (current.map.mismatched_corners.empty()) return best;
   // Helpers are always placed on the map without them: its layout shows the disagreeing tips.
@@ -485,7 +487,7 @@ std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const 
     if (in.on_stage) in.on_stage("mapping again with helper anchors behind the tips");
     std::optional<PairMapping> trial =
         map_if_possible(in.source, helped.source_anchors, in.target, helped.target_anchors, in.curves,
-                        in.settings, in.work, in.on_stage);
+                        in.settings, in.work, in.on_stage, worth_retrying);
     if (!trial) continue;
     seconds.add_stages(trial->seconds);
     if (!folds_less(*trial, to_beat)) continue;
@@ -561,12 +563,45 @@ bool better_with_tips(const PairMapping& other, const PairMapping& current) {
          keeps_faces_and_area(other, current);
 }
 
+// The settings a map through `current`'s anchors plus `tips` is made with: the tips of this
+// round and of earlier ones held within kTipSlack of the reach.
+PairSettings tip_trial_settings(const PairInputs& in, const AnchoredMap& current,
+                                const std::vector<ExtremityAnchor>& tips) {
+  PairSettings settings = in.settings;
+  const double slack = kTipSlack * in.settings.tip_reach * std::sqrt(surface_area(in.target));
+  for (const ExtremityAnchor& tip : tips) settings.anchor_slack_by_name[tip.specs[0].name] = slack;
+  for (const ExtremityAnchor& tip : current.map.extremity_anchors)  // an earlier round's
+    settings.anchor_slack_by_name[tip.specs[0].name] = slack;
+  return settings;
+}
+
+// `trial`, a map through `current`'s anchors plus `tips`, as the map that replaces `current`:
+// it records the tips and carries what `current` recorded.
+AnchoredMap with_tips_recorded(AnchoredMap trial, const AnchoredMap& current,
+                               const std::vector<ExtremityAnchor>& tips) {
+  PairMapping& map = trial.map;
+  map.extremity_anchors = current.map.extremity_anchors;
+  map.extremity_anchors.insert(map.extremity_anchors.end(), tips.begin(), tips.end());
+  map.doubtful_tips = current.map.doubtful_tips;
+  map.released_anchors = current.map.released_anchors;
+  map.tip_anchors.insert(map.tip_anchors.begin(), current.map.tip_anchors.begin(),
+                         current.map.tip_anchors.end());
+  return trial;
+}
+
+// A map through tips that lost to the map without them, and those tips.
+struct LostTrial {
+  AnchoredMap trial;
+  std::vector<ExtremityAnchor> tips;
+};
+
 // A map through `current`'s anchors plus `tips`, when it is better than `current` (and than
 // `also_beat`, when given: another map through tips); nothing otherwise, or when there are no
-// tips or no map is left.
+// tips or no map is left. A trial that loses with folds is left in `lost_folding`, when given.
 std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, const AnchoredMap& current,
                                                       std::vector<ExtremityAnchor> tips, PairSeconds& seconds,
-                                                      const PairMapping* also_beat = nullptr) {
+                                                      const PairMapping* also_beat = nullptr,
+                                                      std::optional<LostTrial>* lost_folding = nullptr) {
   if (tips.empty() || !in.work.allows_another_map()) return std::nullopt;
   AnchoredMap tipped{{}, current.source_anchors, current.target_anchors};
   for (const ExtremityAnchor& tip : tips) {
@@ -574,11 +609,7 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
     tipped.target_anchors.anchors.push_back(tip.specs[1]);
   }
   if (in.on_stage) in.on_stage("mapping again with " + std::to_string(tips.size()) + " anchors at protrusion tips");
-  PairSettings settings = in.settings;
-  const double slack = kTipSlack * in.settings.tip_reach * std::sqrt(surface_area(in.target));
-  for (const ExtremityAnchor& tip : tips) settings.anchor_slack_by_name[tip.specs[0].name] = slack;
-  for (const ExtremityAnchor& tip : current.map.extremity_anchors)  // an earlier round's
-    settings.anchor_slack_by_name[tip.specs[0].name] = slack;
+  const PairSettings settings = tip_trial_settings(in, current, tips);
   // The trial's own later layouts (PairSettings::retry_keeping_corners) are made only when its
   // first layout's map already beats `current` (and `also_beat`). Of the realistic set's 30 trials,
   // the 18 that won did so on their first layout, and the later layouts of those that lost cost up
@@ -592,12 +623,30 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
                       in.work, in.on_stage, wins);
   if (!trial) return std::nullopt;
   seconds.add_stages(trial->seconds);
-  if (!wins(*trial)) return std::nullopt;
   tipped.map = std::move(*trial);
-  tipped.map.extremity_anchors = current.map.extremity_anchors;
-  tipped.map.extremity_anchors.insert(tipped.map.extremity_anchors.end(), tips.begin(), tips.end());
-  tipped.map.doubtful_tips = current.map.doubtful_tips;
-  return tipped;
+  if (!wins(tipped.map)) {
+    if (lost_folding && !tipped.map.quality.flipped_faces.empty())
+      *lost_folding = LostTrial{std::move(tipped), std::move(tips)};
+    return std::nullopt;
+  }
+  return with_tips_recorded(std::move(tipped), current, tips);
+}
+
+// `lost`, a map through `current`'s anchors plus tips that folds and loses to `current`, mapped
+// again with helper anchors behind its own disagreeing corners (with_helpers_behind_tips), when
+// that map is better than `current`. A first map's folds may be removed by a later layout or by
+// helpers, and the two ways lead on differently: on FAUST 000/080 [scan] a later layout removed
+// the first map's folds at the right elbow, and every map through the left hand's tips, its
+// first layout folding there again, lost, leaving that hand tangled; helpers behind tips remove
+// them and the map through the tips wins.
+std::optional<AnchoredMap> tips_with_helpers(const PairInputs& in, const AnchoredMap& current,
+                                             const LostTrial& lost, PairSeconds& seconds) {
+  const PairSettings settings = tip_trial_settings(in, current, lost.tips);
+  const PairInputs trial_inputs{in.source, in.target, in.curves, settings, in.on_stage, in.work};
+  const auto wins = [&](const PairMapping& map) { return better_with_tips(map, current.map); };
+  std::optional<AnchoredMap> helped = with_helpers_behind_tips(trial_inputs, lost.trial, seconds, wins);
+  if (!helped || !better_with_tips(helped->map, current.map)) return std::nullopt;
+  return with_tips_recorded(std::move(*helped), current, lost.tips);
 }
 
 // Whether two sets of tips pair the same template vertices with the same target vertices.
@@ -666,15 +715,23 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   // meshes is made only when asked (PairSettings::map_carried_tips, the default).
   const auto carried = [&](const ExtremityAnchor& tip) { return tip.carried_within(in.settings.tip_reach); };
   if (!in.settings.map_carried_tips && std::all_of(tips.begin(), tips.end(), carried)) return std::nullopt;
-  std::optional<AnchoredMap> tipped = map_with_extremity_anchors(in, current, tips, seconds);
+  std::optional<LostTrial> lost_folding;  // the first trial that lost with folds
+  std::optional<AnchoredMap> tipped =
+      map_with_extremity_anchors(in, current, tips, seconds, nullptr, &lost_folding);
   // The tips matched by distances rest on the others: a doubtful match through the first map (a
   // little finger taken for the thumb) makes them name the rest of the hand wrongly, and the
   // hand tangles. Then once more without them.
   const auto by_distances = [](const ExtremityAnchor& tip) { return tip.matched_by == TipMatching::by_distances; };
   if (!tipped && std::any_of(tips.begin(), tips.end(), by_distances)) {
     tips.erase(std::remove_if(tips.begin(), tips.end(), by_distances), tips.end());
-    tipped = map_with_extremity_anchors(in, current, tips, seconds);
+    tipped = map_with_extremity_anchors(in, current, tips, seconds, nullptr,
+                                        lost_folding ? nullptr : &lost_folding);
   }
+  // Only in the first round: a later round's trial holds the earlier tips too, its corners disagree
+  // at many of them, and a helper behind each made maps that fold more (FAUST 000/020 and 000/030
+  // [scan]: 5 to 14 folds against the trial's 1 and 4, 5 to 7 s a pair spent for nothing).
+  if (!tipped && lost_folding && in.settings.tip_anchors && current.map.extremity_anchors.empty())
+    tipped = tips_with_helpers(in, current, *lost_folding, seconds);
   if (!tipped || !in.settings.retry_doubtful_tips) return tipped;
   // Where the first map squeezed a hand, its nearest tip through the map can be another finger's
   // (FAUST 000/010 [29 anthropometric]: a fingertip paired with one 16 cm from its own; the map
@@ -801,11 +858,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
       if (!next) break;
       tipped = std::move(next);
     }
-    if (tipped) {
-      tipped->map.tip_anchors = (best ? best->map : plain.map).tip_anchors;
-      tipped->map.released_anchors = (best ? best->map : plain.map).released_anchors;
-      best = std::move(tipped);
-    }
+    if (tipped) best = std::move(tipped);
   }
   PairMapping result = best ? std::move(best->map) : std::move(plain.map);
   if (copy) {

@@ -49,7 +49,9 @@ struct PairSettings {
   bool retry_keeping_corners = true;
   /// When the remesh still folds and the layout's corners disagree at some anchors
   /// (map/corner_report.h), map again with a helper anchor behind each of them
-  /// (map/tip_anchors.h) and keep that map when it folds less (map_pair).
+  /// (map/tip_anchors.h) and keep that map when it folds less (map_pair). Also when every map
+  /// of the first round of extremity_anchors loses and one folds: that map again, with helpers
+  /// behind its own disagreeing corners, kept when it beats the map without tips.
   bool tip_anchors = true;
   /// Map again through helper anchors at the tips of unanchored protrusions (fingers without
   /// landmarks) matched through the first map (map/extremity_anchors.h), and keep that map when
