@@ -320,9 +320,24 @@ void MapOptimizer::refresh_coverage() {
   pulls_.resize(faces_.size());
   const ClosestPointIndex remesh(positions_, faces_);
   const int n_target = static_cast<int>(target_.n_vertices());
+  last_nearest_face_.resize(n_target, -1);
   std::vector<ClosestPoint> nearest(n_target);
-  tbb::parallel_for(0, n_target,
-                    [&](int v) { nearest[v] = remesh.closest(position(target_, target_.vertex_handle(v))); });
+  tbb::parallel_for(0, n_target, [&](int v) {
+    const Eigen::Vector3d point = position(target_, target_.vertex_handle(v));
+    // A vertex within the margin of the face nearest it at the last refresh is covered (its
+    // nearest remesh point can only be nearer): most are, and only the rest search the remesh.
+    if (const int f = last_nearest_face_[v]; f >= 0) {
+      const auto& t = faces_[f];
+      const TrianglePoint on_face =
+          closest_point_on_triangle(point, positions_[t[0]], positions_[t[1]], positions_[t[2]]);
+      if ((on_face.point - point).norm() <= coverage_margin_) {
+        nearest[v].distance = -1.0;  // covered; its nearest point is not needed
+        return;
+      }
+    }
+    nearest[v] = remesh.closest(point);
+    last_nearest_face_[v] = nearest[v].location.face;
+  });
   for (int v = 0; v < n_target; ++v) {
     if (!(nearest[v].distance > coverage_margin_)) continue;
     pulls_[nearest[v].location.face].push_back({position(target_, target_.vertex_handle(v)),

@@ -288,6 +288,7 @@ class MapOptimizer {
   std::vector<double> target_vertex_share_;       // per target vertex: its share of the target's area
   double coverage_margin_ = 0.0;                  // gap (target units) a target vertex may have for free
   std::vector<std::vector<CoveragePull>> pulls_;  // per template face; empty when coverage is off
+  std::vector<int> last_nearest_face_;  // per target vertex: its nearest template face at the last refresh
 };
 
 }  // namespace xparam::map_optimizer
