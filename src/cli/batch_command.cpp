@@ -178,6 +178,22 @@ void refuse_to_replace(const BatchOptions& options) {
                             "are kept), or --force to start over (its results are deleted)");
 }
 
+// --resume of an archive another build of xparam started: the options may match and the maps
+// still differ (a change of the method need not come with an option), and the archive's
+// provenance keeps naming the build that started it. Said before anything runs.
+void warn_if_started_by_another_build(const std::filesystem::path& archive) {
+  const std::optional<ArchiveProvenance> recorded = recorded_provenance(archive);
+  if (!recorded || written_by_this_build(*recorded)) return;
+  std::cerr
+      << "xparam batch: warning: " << archive.string() << " was started by xparam "
+      << recorded->xparam_version << " (" << recorded->git_revision << "), this is xparam " << kVersion
+      << " (" << kGitRevision
+      << "): targets mapped now may differ from those it holds made with the same options, and its "
+         "provenance keeps naming "
+      << recorded->git_revision
+      << "; for one build's maps, finish it with that build or start over with --force (or another --out)\n";
+}
+
 // The closing line on the scan intake, when it repaired a target: how many, what, and where each
 // target's record is.
 void print_intake_totals(const BatchSummary& summary) {
@@ -243,12 +259,13 @@ int run_command(const BatchOptions& options) {
     const BatchPlan plan =
         plan_batch(discovered, shard, committed, options.retry_failed,
                    batch_options_json(options.map, options.limits, options.intake));
+    view.reset();  // the plan's count of targets to run is known now
+    if (options.resume) warn_if_started_by_another_build(options.out);
     if (options.dry_run) {
       if (common) print_common_anchors(*common, std::cout);
       return run_dry(prepared, plan, options);
     }
 
-    view.reset();  // the plan's count of targets to run is known now
     if (!options.quiet) {
       print_plan(plan, options, std::cerr);
       if (common) print_common_anchors(*common, std::cerr);

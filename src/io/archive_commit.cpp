@@ -111,6 +111,17 @@ std::vector<std::filesystem::path> existing_archive_files(const std::filesystem:
   return found;
 }
 
+std::optional<ArchiveProvenance> recorded_provenance(const std::filesystem::path& archive) {
+  const std::filesystem::path template_part = template_part_path(archive);
+  if (std::filesystem::is_regular_file(template_part)) return ArchiveReader(template_part).provenance();
+  if (std::filesystem::is_regular_file(archive)) return ArchiveReader(archive).provenance();
+  return std::nullopt;
+}
+
+bool written_by_this_build(const ArchiveProvenance& recorded) {
+  return recorded.xparam_version == kVersion && recorded.git_revision == kGitRevision;
+}
+
 std::filesystem::path target_part_path(const std::filesystem::path& archive, const std::string& name) {
   return targets_directory(archive) / (encode_name(name) + ".h5");
 }

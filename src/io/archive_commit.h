@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -36,6 +37,14 @@ std::filesystem::path parts_directory(const std::filesystem::path& archive);
 /// its parts directory, those that exist (a new run refuses to start unless told to resume
 /// them or to start over).
 std::vector<std::filesystem::path> existing_archive_files(const std::filesystem::path& archive);
+
+/// The provenance the archive at `archive` was started with (its template part while a run's
+/// parts are there, else ARCHIVE.h5's; resume() keeps it); nothing when neither exists.
+/// \throw ArchiveError when the file cannot be read
+std::optional<ArchiveProvenance> recorded_provenance(const std::filesystem::path& archive);
+
+/// Whether `recorded` was written by this build of xparam (its version and git revision).
+bool written_by_this_build(const ArchiveProvenance& recorded);
 
 /// The part file of target `name` (the name percent-encoded so any name is a safe file name).
 std::filesystem::path target_part_path(const std::filesystem::path& archive, const std::string& name);

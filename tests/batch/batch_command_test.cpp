@@ -105,13 +105,11 @@ TEST(BatchCommand, UsageAndFatalErrorsHaveTheirExitCodes) {
   EXPECT_FALSE(std::filesystem::exists(dir / "a.h5"));
 }
 
-// An archive written before `option` existed: its options do not have it. Its one target, the
-// woman, is committed as failed with her files' digests, so a resume keeps it and maps nothing.
-void write_archive_predating(const std::string& option, const path& archive, const path& targets) {
-  nlohmann::ordered_json options = nlohmann::ordered_json::parse(batch_options_json({}));
-  ASSERT_EQ(options.erase(option), 1u);
+// An archive of the man template with `provenance`. Its one target, the woman, is committed as
+// failed with her files' digests, so a resume keeps it and maps nothing.
+void write_archive_with(const ArchiveProvenance& provenance, const path& archive, const path& targets) {
   const PreparedTemplate prepared = prepare_template(test::man_template());
-  BatchArchive batch = BatchArchive::create(archive, prepared.record, current_provenance(options.dump()));
+  BatchArchive batch = BatchArchive::create(archive, prepared.record, provenance);
   TargetRecord woman;
   woman.name = "woman";
   woman.error = "woman.obj: mapped by an older xparam";
@@ -121,6 +119,13 @@ void write_archive_predating(const std::string& option, const path& archive, con
   woman.anchors_sha256 = sha256_file_hex(targets / "woman.anchors.json");
   batch.commit(woman);
   batch.finish();
+}
+
+// An archive written before `option` existed: its options do not have it.
+void write_archive_predating(const std::string& option, const path& archive, const path& targets) {
+  nlohmann::ordered_json options = nlohmann::ordered_json::parse(batch_options_json({}));
+  ASSERT_EQ(options.erase(option), 1u);
+  write_archive_with(current_provenance(options.dump()), archive, targets);
 }
 
 // The command resuming an archive in `dir` from the woman's folder.
@@ -183,6 +188,32 @@ TEST(BatchCommand, AnArchiveOlderThanTheDoubtfulTipRetryResumesWithoutItOnly) {
       "retry_doubtful_tips", "",
       "option \"retry_doubtful_tips\" is not recorded (the archive predates it: false), now true",
       " --no-retry-doubtful-tips");
+}
+
+// An archive another build started, with this run's options: resuming it goes on, with a
+// warning naming both builds (the maps may differ without an option saying so), and the archive
+// keeps naming the build that started it. This build's own archive resumes without a word.
+TEST(BatchCommand, ResumingAnArchiveAnotherBuildStartedWarnsAndGoesOn) {
+  const path dir = test::fresh_temp_dir("command_resume_other_build");
+  test::copy_sample_targets(dir / "targets", {"woman"});
+  const std::string this_run = batch_options_json({});
+  ArchiveProvenance other_build = current_provenance(this_run);
+  other_build.git_revision = std::string(kGitRevision) + "-other";
+  const path archive = dir / "other.h5";
+  write_archive_with(other_build, archive, dir / "targets");
+  expect_continued(dir, archive, resume_command(dir, archive));
+  const std::string warned = test::read_file(dir / "stderr.txt");
+  EXPECT_NE(warned.find("warning: " + archive.string() + " was started by xparam " +
+                        other_build.xparam_version + " (" + other_build.git_revision + "), this is xparam " +
+                        kVersion + " (" + kGitRevision + ")"),
+            std::string::npos)
+      << warned;
+  EXPECT_EQ(ArchiveReader(archive).provenance().git_revision, other_build.git_revision);
+
+  const path own = dir / "own.h5";
+  write_archive_with(current_provenance(this_run), own, dir / "targets");
+  expect_continued(dir, own, resume_command(dir, own));
+  EXPECT_EQ(test::read_file(dir / "stderr.txt").find("was started by"), std::string::npos);
 }
 
 }  // namespace
