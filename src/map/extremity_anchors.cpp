@@ -1,6 +1,7 @@
 #include "map/extremity_anchors.h"
 
 #include "core/closest_point.h"
+#include "core/errors.h"
 #include "layout/anchor_voronoi.h"
 
 #include <algorithm>
@@ -121,12 +122,20 @@ constexpr double kSqueezed = 0.5;
 // other mesh to stand in for its tip.
 constexpr double kBlobTipReaches = 3.0;
 
-// Per anchor of one mesh: the unmatched tip in its Voronoi cell farthest from it and the cell's
-// farthest end (Extremities::ends), -1 where there is none, and their distances from the anchor as
-// fractions of sqrt(area).
+// A cell's next tip at least this share of the farthest tip's distance from the landmark makes a
+// match by cell ambiguous (ExtremityAnchor::rival_target). The evaluation's hands: a right match's
+// next finger at 0.96-0.99 of its distance, SHREC'19 18's target index fingertip 1/0.977 of its
+// middle one's (the template's middle is the farthest).
+constexpr double kAmbiguousCell = 0.95;
+
+// Per anchor of one mesh: the unmatched tip in its Voronoi cell farthest from it, the next farthest
+// and the cell's farthest end (Extremities::ends), -1 where there is none, and their distances from
+// the anchor as fractions of sqrt(area).
 struct FarthestInCells {
   std::vector<int> tip;
   std::vector<double> tip_distance;
+  std::vector<int> next_tip;
+  std::vector<double> next_tip_distance;
   std::vector<int> end;
   std::vector<double> end_distance;
 };
@@ -134,16 +143,22 @@ struct FarthestInCells {
 FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<int>& matched_tips, double scale) {
   const AnchorVoronoi& cells = side.found.cells;
   const std::size_t n = side.anchors.size();
-  FarthestInCells farthest{std::vector<int>(n, -1), std::vector<double>(n, 0.0), std::vector<int>(n, -1),
-                           std::vector<double>(n, 0.0)};
+  FarthestInCells farthest{std::vector<int>(n, -1), std::vector<double>(n, 0.0),
+                           std::vector<int>(n, -1), std::vector<double>(n, 0.0),
+                           std::vector<int>(n, -1), std::vector<double>(n, 0.0)};
   // In vertex order: ties go to the lower index.
   for (int v : side.found.tips) {
     if (std::find(matched_tips.begin(), matched_tips.end(), v) != matched_tips.end()) continue;
     const int k = cells.cell[v];
     const double d = cells.distance[v] / scale;
     if (farthest.tip[k] < 0 || d > farthest.tip_distance[k]) {
+      farthest.next_tip[k] = farthest.tip[k];
+      farthest.next_tip_distance[k] = farthest.tip_distance[k];
       farthest.tip[k] = v;
       farthest.tip_distance[k] = d;
+    } else if (farthest.next_tip[k] < 0 || d > farthest.next_tip_distance[k]) {
+      farthest.next_tip[k] = v;
+      farthest.next_tip_distance[k] = d;
     }
   }
   for (int v : side.found.ends) {
@@ -365,8 +380,23 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
     by_cell.push_back(tip_anchor(s, t, mismatch.misses(s, t, mismatch.preimage(t)),
                                  matched.size() + by_cell.size() + 1, names));
     by_cell.back().matched_by = TipMatching::by_cell;
+    if (t == on_target.tip[k] && on_target.next_tip[k] >= 0 &&
+        on_target.next_tip_distance[k] >= kAmbiguousCell * on_target.tip_distance[k])
+      by_cell.back().rival_target = on_target.next_tip[k];
   }
   return by_cell;
+}
+
+ExtremityAnchor matched_with_rival(const ExtremityAnchor& tip, const Mesh& source, const Mesh& target,
+                                   const FirstMap& map) {
+  XP_ASSERT(tip.rival_target >= 0);
+  const TipMismatch mismatch(source, target, map);
+  const int s = std::get<AnchorVertex>(tip.specs[0].location).index;
+  ExtremityAnchor rival = tip;
+  rival.specs[1].location = AnchorVertex{tip.rival_target};
+  rival.miss = mismatch.misses(s, tip.rival_target, mismatch.preimage(tip.rival_target));
+  rival.rival_target = -1;
+  return rival;
 }
 
 std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors& source, const TipsAndAnchors& target,

@@ -59,6 +59,10 @@ struct ExtremityAnchor {
   /// target tip.
   std::array<double, 2> miss{};
   TipMatching matched_by = TipMatching::through_map;
+  /// by_cell only: the target's next tip in the cell, when it lies nearly as far from the
+  /// landmark as this one (kAmbiguousCell): two fingers of nearly one length, which the match
+  /// may have taken one for the other; -1 otherwise.
+  int rival_target = -1;
 
   double mismatch() const { return miss[0] + miss[1]; }              ///< both misses, summed
   double larger_miss() const { return std::max(miss[0], miss[1]); }  ///< the farther of the two
@@ -102,6 +106,11 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
                                                        const FirstMap& map,
                                                        const std::vector<ExtremityAnchor>& matched,
                                                        const std::vector<std::string>& taken);
+
+/// `tip`, a match by cell with a rival (ExtremityAnchor::rival_target), matched with the rival
+/// instead: the same template tip and name, its misses through `map` measured again, no rival.
+ExtremityAnchor matched_with_rival(const ExtremityAnchor& tip, const Mesh& source, const Mesh& target,
+                                   const FirstMap& map);
 
 /// Tips still unmatched after `matched` on a limb where a tip is matched (a hand whose thumb is
 /// matched and whose four fingers the first map squeezed into the palm), matched by their edge-path

@@ -733,6 +733,27 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   if (!tipped && lost_folding && in.settings.tip_anchors && current.map.extremity_anchors.empty())
     tipped = tips_with_helpers(in, current, *lost_folding, seconds);
   if (!tipped || !in.settings.retry_doubtful_tips) return tipped;
+  // A tip matched by its landmark's cell is the farthest from the landmark on each mesh, and two
+  // fingers can be nearly as long (ExtremityAnchor::rival_target): SHREC'19 18 [29 anthropometric]
+  // paired the template's middle fingertip with the target's index fingertip, and the next round,
+  // through that map, the ring with the middle; the index finger and thumb were left squeezed on
+  // the back of the target's hand. The winner is tried against a map with the cell's other tip, the
+  // rest matched again, and the better kept (that pair: E_L2 1.047 -> 1.032 in this round, every
+  // finger on its finger after the next).
+  const auto new_tips = tipped->map.extremity_anchors.begin() +
+                        static_cast<std::ptrdiff_t>(current.map.extremity_anchors.size());
+  const auto ambiguous = std::find_if(new_tips, tipped->map.extremity_anchors.end(),
+                                      [](const ExtremityAnchor& tip) { return tip.rival_target >= 0; });
+  if (ambiguous != tipped->map.extremity_anchors.end()) {
+    std::vector<ExtremityAnchor> with_rival = through_map;
+    with_rival.push_back(matched_with_rival(*ambiguous, in.source, in.target, first));
+    const ExtremityAnchor replaced = *ambiguous;
+    if (std::optional<AnchoredMap> rival = map_with_extremity_anchors(
+            in, current, with_the_rest(std::move(with_rival)), seconds, &tipped->map)) {
+      rival->map.doubtful_tips.push_back(replaced);
+      tipped = std::move(rival);
+    }
+  }
   // Where the first map squeezed a hand, its nearest tip through the map can be another finger's
   // (FAUST 000/010 [29 anthropometric]: a fingertip paired with one 16 cm from its own; the map
   // through it still wins, E_L2 2.00 -> 1.11, with the fingers wound on the back of the target's

@@ -69,7 +69,9 @@ struct PairSettings {
   /// When a map through tips wins and the tip that the map it was matched through carried farthest
   /// from its partner missed by more than twice tip_reach (on either mesh), map once more without
   /// that tip (the others matched again without it) and keep the better map: a hand the first map
-  /// squeezed can pair a fingertip with another finger's.
+  /// squeezed can pair a fingertip with another finger's. Likewise when a tip of the winner was
+  /// matched by its landmark's cell and the target's next tip there lies nearly as far from the
+  /// landmark (ExtremityAnchor::rival_target): map once more with that tip instead.
   bool retry_doubtful_tips = true;
   /// A protrusion tip ends a protrusion at least half this long and is the farthest point within
   /// this distance; fraction of sqrt(area) of each mesh (3.4 cm on an adult body).
@@ -213,9 +215,10 @@ struct PairMapping {
   /// The helper anchors at protrusion tips the map passes through (PairSettings::extremity_anchors);
   /// empty unless they made it better. They are among `anchors`.
   std::vector<ExtremityAnchor> extremity_anchors;
-  /// Tips a round matched through the map before it and the kept map was made without
-  /// (PairSettings::retry_doubtful_tips): the map carried each farthest from its partner, by
-  /// more than twice tip_reach, and the map without it won. Not among `anchors`.
+  /// Tips a round matched and the kept map was made without (PairSettings::retry_doubtful_tips):
+  /// one the map before carried farthest from its partner, by more than twice tip_reach, the map
+  /// without it winning; or a match by cell whose rival won (ExtremityAnchor::rival_target). Not
+  /// among `anchors`.
   std::vector<ExtremityAnchor> doubtful_tips;
   /// The anchors the map no longer passes through, in the order they were released; empty
   /// unless PairSettings::max_released_anchors > 0 and the map with every anchor folds.

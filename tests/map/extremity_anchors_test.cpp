@@ -121,6 +121,61 @@ TEST_F(SqueezedSpike, ABlobsEndStandsInForATip) {
   EXPECT_TRUE(match_extremities_by_cell(spiked, bare, {images, faces}, {}, {}).empty());
 }
 
+// Two spikes in the -z landmark's cell, +x and -y, squeezed into the landmark by the first map; on
+// the template +x is the longer, on the target -y, by a little. The cell matches the farthest tip on
+// each mesh, +x with -y, and names the target's +x tip, nearly as far, its rival; matched with the
+// rival instead, the template's +x tip keeps its name.
+TEST(CellMatch, ATipNearlyAsFarFromTheLandmarkIsTheMatchsRival) {
+  const auto two_spikes = [](double x_spike, double y_spike) {
+    Mesh mesh = test::subdivided_octahedron(6);
+    mesh.set_point(VertexHandle(0), to_point(Eigen::Vector3d(x_spike, 0.0, 0.0)));
+    mesh.set_point(VertexHandle(3), to_point(Eigen::Vector3d(0.0, -y_spike, 0.0)));
+    return mesh;
+  };
+  const Mesh source = two_spikes(3.0, 2.5);
+  const Mesh target = two_spikes(2.9, 3.0);
+  const std::vector<int> anchors = {5, 2};
+  const double reach = 0.5;
+  const Extremities on_source = extremities(source, 5, anchors, reach);
+  const Extremities on_target = extremities(target, 5, anchors, reach);
+  ASSERT_EQ(on_source.tips, (std::vector<int>{0, 3, 4}));
+  ASSERT_EQ(on_target.tips, (std::vector<int>{0, 3, 4}));
+  ASSERT_EQ(on_source.cells.cell[0], on_source.cells.cell[3]);
+  ASSERT_EQ(on_target.cells.cell[0], on_target.cells.cell[3]);
+  const std::vector<std::array<int, 3>> faces = triangles_of(source);
+  std::vector<Eigen::Vector3d> images;
+  for (VertexHandle v : target.vertices()) images.push_back(position(target, v));
+  images[0] = images[3] = position(target, VertexHandle(5)) + Eigen::Vector3d(0.05, 0.0, 0.0);
+  const FirstMap squeezing{images, faces};
+  const std::vector<ExtremityAnchor> by_cell = match_extremities_by_cell(
+      {source, on_source, anchors, reach / std::sqrt(surface_area(source))},
+      {target, on_target, anchors, reach / std::sqrt(surface_area(target))}, squeezing, {}, {});
+  ASSERT_EQ(by_cell.size(), 1u);
+  EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[0].location).index, 0);
+  EXPECT_EQ(std::get<AnchorVertex>(by_cell[0].specs[1].location).index, 3);
+  EXPECT_EQ(by_cell[0].rival_target, 0);
+
+  const ExtremityAnchor rival = matched_with_rival(by_cell[0], source, target, squeezing);
+  EXPECT_EQ(std::get<AnchorVertex>(rival.specs[0].location).index, 0);
+  EXPECT_EQ(std::get<AnchorVertex>(rival.specs[1].location).index, 0);
+  EXPECT_EQ(rival.specs[1].name, by_cell[0].specs[1].name);
+  EXPECT_EQ(rival.matched_by, TipMatching::by_cell);
+  EXPECT_EQ(rival.rival_target, -1);
+
+  // A target whose -y spike is clearly the longer (2.5 against 3.5) gives the match no rival.
+  const Mesh clear = two_spikes(2.5, 3.5);
+  const Extremities on_clear = extremities(clear, 5, anchors, reach);
+  std::vector<Eigen::Vector3d> clear_images;
+  for (VertexHandle v : clear.vertices()) clear_images.push_back(position(clear, v));
+  clear_images[0] = clear_images[3] = position(clear, VertexHandle(5)) + Eigen::Vector3d(0.05, 0.0, 0.0);
+  const std::vector<ExtremityAnchor> unambiguous = match_extremities_by_cell(
+      {source, on_source, anchors, reach / std::sqrt(surface_area(source))},
+      {clear, on_clear, anchors, reach / std::sqrt(surface_area(clear))}, {clear_images, faces}, {}, {});
+  ASSERT_EQ(unambiguous.size(), 1u);
+  EXPECT_EQ(std::get<AnchorVertex>(unambiguous[0].specs[1].location).index, 3);
+  EXPECT_EQ(unambiguous[0].rival_target, -1);
+}
+
 // A hand on one face of the octahedron (sqrt(area) 2.63, so tips 0.53 apart are near): the +x
 // corner a matched tip (the thumb), a landmark at the wrist, and three unmatched tips. The target
 // is the same mesh turned and twice the size; the first map draws every vertex to one point, so
