@@ -211,6 +211,7 @@ void WorkingCopy::carry_back(PairMapping& mapping, const Mesh& source, const std
     for (ExtremityAnchor& tip : *tips) {
       AnchorVertex& vertex = std::get<AnchorVertex>(tip.specs[1].location);
       vertex.index = copy_.source_vertex[vertex.index];
+      if (tip.rival_target >= 0) tip.rival_target = copy_.source_vertex[tip.rival_target];
     }
   }
 
