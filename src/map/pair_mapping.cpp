@@ -645,7 +645,7 @@ std::optional<AnchoredMap> tips_with_helpers(const PairInputs& in, const Anchore
   const PairInputs trial_inputs{in.source, in.target, in.curves, settings, in.on_stage, in.work};
   const auto wins = [&](const PairMapping& map) { return better_with_tips(map, current.map); };
   std::optional<AnchoredMap> helped = with_helpers_behind_tips(trial_inputs, lost.trial, seconds, wins);
-  if (!helped || !better_with_tips(helped->map, current.map)) return std::nullopt;
+  if (!helped || !wins(helped->map)) return std::nullopt;
   return with_tips_recorded(std::move(*helped), current, lost.tips);
 }
 
@@ -733,6 +733,15 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   if (!tipped && lost_folding && in.settings.tip_anchors && current.map.extremity_anchors.empty())
     tipped = tips_with_helpers(in, current, *lost_folding, seconds);
   if (!tipped || !in.settings.retry_doubtful_tips) return tipped;
+  // A rival to the winner: the map through `rival_tips`, made without `left_out`, replaces it when
+  // better (and reports `left_out` as doubtful).
+  const auto try_rival = [&](std::vector<ExtremityAnchor> rival_tips, const ExtremityAnchor& left_out) {
+    std::optional<AnchoredMap> rival =
+        map_with_extremity_anchors(in, current, std::move(rival_tips), seconds, &tipped->map);
+    if (!rival) return;
+    rival->map.doubtful_tips.push_back(left_out);
+    tipped = std::move(rival);
+  };
   // A tip matched by its landmark's cell is the farthest from the landmark on each mesh, and two
   // fingers can be nearly as long (ExtremityAnchor::rival_target): SHREC'19 18 [29 anthropometric]
   // paired the template's middle fingertip with the target's index fingertip, and the next round,
@@ -747,12 +756,8 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   if (ambiguous != tipped->map.extremity_anchors.end()) {
     std::vector<ExtremityAnchor> with_rival = through_map;
     with_rival.push_back(matched_with_rival(*ambiguous, in.source, in.target, first));
-    const ExtremityAnchor replaced = *ambiguous;
-    if (std::optional<AnchoredMap> rival = map_with_extremity_anchors(
-            in, current, with_the_rest(std::move(with_rival)), seconds, &tipped->map)) {
-      rival->map.doubtful_tips.push_back(replaced);
-      tipped = std::move(rival);
-    }
+    const ExtremityAnchor replaced = *ambiguous;  // `tipped`, which holds it, may be replaced
+    try_rival(with_the_rest(std::move(with_rival)), replaced);
   }
   // Where the first map squeezed a hand, its nearest tip through the map can be another finger's
   // (FAUST 000/010 [29 anthropometric]: a fingertip paired with one 16 cm from its own; the map
@@ -771,11 +776,8 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   others.insert(others.end(), std::next(worst), through_map.end());
   const std::vector<ExtremityAnchor> without_doubtful = with_the_rest(std::move(others));
   if (same_tips(without_doubtful, tips)) return tipped;  // the doubtful one matched again otherwise
-  std::optional<AnchoredMap> without =
-      map_with_extremity_anchors(in, current, without_doubtful, seconds, &tipped->map);
-  if (!without) return tipped;
-  without->map.doubtful_tips.push_back(*worst);
-  return without;
+  try_rival(without_doubtful, *worst);
+  return tipped;
 }
 
 // A map through `start`'s anchors less some released one at a time, when `start` folds

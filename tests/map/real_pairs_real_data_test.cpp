@@ -105,6 +105,23 @@ TEST(FaustPair, NoRoundOfTipsTheMapAlreadyCarriesWhenAskedNot) {
     EXPECT_TRUE(tip.carried_within(made.settings.tip_reach));
 }
 
+// FAUST tr_reg_000, another subject's registration (`original`: its vertex i is template vertex i's
+// true image) and that registration decimated to 6000 vertices, the target (another connectivity),
+// as the evaluation maps them.
+struct DecimatedFaustPair {
+  LoadedMesh source;
+  LoadedMesh original;
+  LoadedMesh target;
+};
+
+DecimatedFaustPair load_decimated_faust_pair(const std::filesystem::path& data, const std::string& subject) {
+  const std::filesystem::path registrations = data / "faust_registrations";
+  LoadedMesh original = load_mesh(registrations / (subject + ".ply"));
+  const std::filesystem::path file = test::fresh_temp_dir("decimated_" + subject) / (subject + "_6000.obj");
+  write_obj(file, decimate(original.mesh, 6000).mesh);
+  return {load_mesh(registrations / "tr_reg_000.ply"), std::move(original), load_mesh(file)};
+}
+
 // FAUST 010 decimated to 6000 vertices (another connectivity) against 000, with the 29
 // anthropometric landmarks, as the evaluation maps it (the target's landmarks are the registration's
 // points). The first map squeezes the left hand, and one of its fingertips is matched through it
@@ -117,11 +134,7 @@ TEST(FaustPair, NoRoundOfTipsTheMapAlreadyCarriesWhenAskedNot) {
 TEST(FaustPair, ADoubtfulTipMatchGivesWayToAMapWithoutIt) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
-  const LoadedMesh source = load_mesh(data / "faust_registrations/tr_reg_000.ply");
-  const LoadedMesh original = load_mesh(data / "faust_registrations/tr_reg_010.ply");
-  const std::filesystem::path file = test::fresh_temp_dir("doubtful_tip") / "tr_reg_010_6000.obj";
-  write_obj(file, decimate(original.mesh, 6000).mesh);
-  const LoadedMesh target = load_mesh(file);
+  const auto [source, original, target] = load_decimated_faust_pair(data, "tr_reg_010");
   const AnchorSet landmarks = read_anchors(data / "faust_landmarks/smpl_anthropometry_landmark_indices.json");
   AnchorSet on_target = landmarks;
   for (AnchorSpec& anchor : on_target.anchors)
@@ -174,11 +187,7 @@ TEST(FaustPair, ADoubtfulTipMatchGivesWayToAMapWithoutIt) {
 TEST(FaustPair, HelpersBehindALosingRoundsTipsOpenTheLeftHand) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
-  const LoadedMesh source = load_mesh(data / "faust_registrations/tr_reg_000.ply");
-  const LoadedMesh original = load_mesh(data / "faust_registrations/tr_reg_080.ply");
-  const std::filesystem::path file = test::fresh_temp_dir("losing_round") / "tr_reg_080_6000.obj";
-  write_obj(file, decimate(original.mesh, 6000).mesh);
-  const LoadedMesh target = load_mesh(file);
+  const auto [source, original, target] = load_decimated_faust_pair(data, "tr_reg_080");
   const std::filesystem::path scans = data / "faust_landmarks/scan_landmarks";
   const AnchorSet on_source = read_anchors(scans / "tr_scan_000_landmarks.json");
   const AnchorSet on_target = read_anchors(scans / "tr_scan_080_landmarks.json");
