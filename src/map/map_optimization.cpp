@@ -98,6 +98,8 @@ MapOptimizationResult MapOptimizer::run() {
   std::fill(moved_.begin(), moved_.end(), 1);
   double coverage = total_coverage_energy();
   for (int since_refresh = 0, sweeps_left = settings_.max_sweeps; sweeps_left > 0; --sweeps_left) {
+    settled_drop_ = settings_.settled_fraction * settings_.tolerance * energy.unfolded() /
+                    static_cast<double>(locations_.size());
     bool any_moved = sweep();
     any_moved = slide_in_face_anchors() || any_moved;
     ++result.sweeps;
@@ -133,6 +135,7 @@ MapOptimizationResult MapOptimizer::run() {
   // can open a face a move left folded (a lay about an anchor opens the anchor's face and may
   // fold one beside it, which no try of one corner opens).
   keep_strict_folds_ = true;
+  settled_drop_ = 0.0;  // few vertices move here, each until it stops
   for (int round = 0; round < kOpeningRounds; ++round) {
     std::fill(moved_.begin(), moved_.end(), 0);
     if (!open_remaining_folds()) break;
@@ -148,6 +151,7 @@ MapOptimizationResult MapOptimizer::run() {
   for (std::size_t v = 0; v < locations_.size(); ++v) {
     if (locations_[v].face != start[v].face || locations_[v].bary != start[v].bary) ++result.moved_vertices;
   }
+  result.vertex_steps = vertex_steps_;
   for (const PinnedVertex& pin : pinned_)
     result.anchor_miss.push_back((positions_[pin.vertex] - pin.landmark).norm());
   result.locations = std::move(locations_);
@@ -178,6 +182,7 @@ bool MapOptimizer::sweep() {
   }
   std::fill(moved_.begin(), moved_.end(), 0);
   for (const std::vector<int>& colour : colours_) {
+    for (int v : colour) vertex_steps_ += active[v];
     tbb::parallel_for(0, static_cast<int>(colour.size()), [&](int k) {
       if (active[colour[k]]) moved_[colour[k]] = move_vertex(colour[k]);
     });
@@ -511,7 +516,7 @@ bool MapOptimizer::move_vertex(int v) {
       continue;
     if (after < before + 1e-4 * fraction * slope) {
       place(v, {*there, y, there_normal});
-      return true;
+      return before - after > settled_drop_;
     }
   }
   return false;

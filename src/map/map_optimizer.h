@@ -86,7 +86,8 @@ class MapOptimizer {
   bool strictly_folded(int f, int moved, const SurfacePoint& at, const Eigen::Vector3d& at_position) const;
 
   // One sweep over the free vertices that may move (they or a neighbour moved in the last
-  // sweep), a colour at a time. Returns whether any vertex moved.
+  // sweep, by more than a settled step), a colour at a time. Returns whether any vertex moved by
+  // more than that.
   bool sweep();
 
   // Rest shapes: each template face's inverse edge matrix in a frame of its own plane, divided
@@ -172,7 +173,7 @@ class MapOptimizer {
 
   // One Newton step of v's image in the plane of its target face, walked on the surface, with
   // backtracking until its faces' energy falls and no more of them fold. Returns whether the
-  // image moved.
+  // image moved by more than a settled step (MapOptimizationSettings::settled_fraction).
   bool move_vertex(int v);
 
   // Moves of a few vertices at once outside the sweeps (map/map_local_moves.cpp).
@@ -284,7 +285,10 @@ class MapOptimizer {
   std::vector<int> anchor_of_pin_;                 // per pin: its anchor's index in anchor_pins_
   std::vector<std::vector<int>> in_face_anchors_;  // the pins of each anchor inside a face (or edge)
   std::vector<std::vector<int>> colours_;
-  std::vector<char> moved_;                       // per vertex: whether it moved in the last sweep
+  std::vector<char> moved_;  // per vertex: whether it moved in the last sweep (by more than a settled step)
+  double settled_drop_ =
+      0.0;  // a step lowering its faces' energy by less has settled (0 in the openings' sweeps)
+  long long vertex_steps_ = 0;                    // steps tried in the sweeps
   std::vector<double> target_vertex_share_;       // per target vertex: its share of the target's area
   double coverage_margin_ = 0.0;                  // gap (target units) a target vertex may have for free
   std::vector<std::vector<CoveragePull>> pulls_;  // per template face; empty when coverage is off
