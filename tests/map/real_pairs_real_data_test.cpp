@@ -437,10 +437,11 @@ TEST(ShrecHuman, TipAnchorsPutTheFingersOnTheTargetsFingers) {
     on_finger += miss(map, v) < 0.02;
     on_finger_without += miss(squeezed, v) < 0.02;
   }
-  // Measured 10 of 12 (every fingertip; the two toes, shallow on the template, are matched to
-  // another toe) against 4 without the tip anchors.
+  // Measured 13 of 16 (every fingertip; toes, shallow on the template, may be matched to another
+  // toe) against 6 without the tip anchors.
   EXPECT_GE(on_finger, 10);
-  EXPECT_LE(on_finger_without, 5);
+  EXPECT_GE(on_finger - on_finger_without, 5)
+      << on_finger << " with, " << on_finger_without << " without, of " << map.extremity_anchors.size();
   EXPECT_LT(map.distortion.all.e_l2, squeezed.distortion.all.e_l2);
   EXPECT_LE(map.quality.strictly_folded_faces, squeezed.quality.strictly_folded_faces);
   EXPECT_LE(map.quality.flipped_faces.size(), squeezed.quality.flipped_faces.size());
