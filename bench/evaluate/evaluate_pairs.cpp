@@ -18,8 +18,13 @@
 //   over the target's bounding-box diagonal and in % of sqrt(target area); swaps and merges; the
 //   seconds of the base-domain optimization, of the map optimization and of the whole pair;
 //   floor x: the whole pair's seconds over a floor measured in the same run for the pair
-//   (loading both meshes plus one sparse solve over the larger, evaluate/floor_time.h); and the
-//   released anchors.
+//   (loading both meshes plus one sparse solve over the larger, evaluate/floor_time.h); the
+//   released anchors; and, for an SMPL template (6890 vertices) with ground truth, the worse
+//   hand's and the worse foot's ground-truth error in % of sqrt(target area): the mean over the
+//   template vertices within 0.067 sqrt(template area) (9 cm on an adult) of the midpoint of the
+//   two knuckle landmarks (Metacarpal Phal. II and V) or the two ball-of-foot landmarks
+//   (Metatarsal Phal. I and V) of the CAESAR set. A squeezed or tangled hand, or toes crumpled,
+//   lie centimetres from the truth while the whole map's mean hardly moves.
 // At the end, one line per configuration over the pairs run: pairs with no strict fold, the
 // largest E_L2, ground-truth error and seconds.
 //
@@ -53,6 +58,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -255,6 +261,8 @@ struct PreparedPair {
   AnchorSet source_anchors, target_anchors;
   // Per template file vertex: its true counterpart on the target (empty: no ground truth).
   std::vector<Eigen::Vector3d> truth;
+  // An SMPL template's hands and feet (template vertex ids), when it has ground truth.
+  std::vector<int> hands[2], feet[2];
   std::vector<std::string> notes;  // printed under the pair's header
 };
 
@@ -270,7 +278,40 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
-PreparedPair prepare(const PairSpec& pair, const fs::path& data, DecimatedTargets& decimated) {
+// The template vertices within 0.067 sqrt(area) (9 cm on an adult) of the midpoint of the two
+// landmarks named `side` + each of `ends`; `ids` the CAESAR landmarks' SMPL vertices.
+std::vector<int> limb(const Mesh& smpl, const std::vector<NamedId>& ids, const std::string& side,
+                      const std::array<std::string, 2>& ends) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const std::string& end : ends) {
+    const auto found =
+        std::find_if(ids.begin(), ids.end(), [&](const NamedId& id) { return id.name == side + end; });
+    if (found == ids.end()) throw std::runtime_error("no landmark \"" + side + end + "\" in the CAESAR set");
+    centre += 0.5 * position(smpl, VertexHandle(found->id));
+  }
+  const double radius = 0.067 * std::sqrt(surface_area(smpl));
+  std::vector<int> vertices;
+  for (VertexHandle v : smpl.vertices()) {
+    if ((position(smpl, v) - centre).norm() <= radius) vertices.push_back(v.idx());
+  }
+  return vertices;
+}
+
+// Fill `p.hands` and `p.feet` when the template is SMPL's (by its vertex count) and the pair has
+// ground truth.
+void find_limbs(PreparedPair& p, const fs::path& data) {
+  constexpr int kSmplVertices = 6890;
+  if (p.truth.empty() || static_cast<int>(p.source.mesh.n_vertices()) != kSmplVertices) return;
+  const std::vector<NamedId> ids = read_ids(data / kCaesar);
+  for (int side = 0; side < 2; ++side) {
+    const std::string name = side == 0 ? "Lt. " : "Rt. ";
+    p.hands[side] = limb(p.source.mesh, ids, name, {"Metacarpal Phal. II", "Metacarpal Phal. V"});
+    p.feet[side] = limb(p.source.mesh, ids, name, {"Metatarsal Phal. I", "Metatarsal Phal. V"});
+  }
+}
+
+// The pair's meshes, anchors and ground truth.
+PreparedPair load_pair(const PairSpec& pair, const fs::path& data, DecimatedTargets& decimated) {
   PreparedPair p;
   p.source_file = data / pair.source;
   p.source = load_mesh(p.source_file);
@@ -357,6 +398,12 @@ PreparedPair prepare(const PairSpec& pair, const fs::path& data, DecimatedTarget
   return p;
 }
 
+PreparedPair prepare(const PairSpec& pair, const fs::path& data, DecimatedTargets& decimated) {
+  PreparedPair p = load_pair(pair, data, decimated);
+  find_limbs(p, data);
+  return p;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Configurations
 
@@ -412,6 +459,24 @@ std::vector<Configuration> configurations() {
 // ---------------------------------------------------------------------------------------------
 // Figures
 
+// Mean distance from the image of each of `vertices` to its true counterpart truth[v].
+double mean_truth_distance(const PairMapping& map, const std::vector<Eigen::Vector3d>& truth,
+                           const std::vector<int>& vertices) {
+  double sum = 0.0;
+  for (int v : vertices)
+    sum += (map.remesh_vertices.row(v).transpose() - truth[static_cast<std::size_t>(v)]).norm();
+  return sum / static_cast<double>(vertices.size());
+}
+
+// The larger of the two limbs' mean ground-truth error, in % of `root_area`; -1 when the pair
+// has no such limbs.
+double worse_limb(const PairMapping& map, const std::vector<Eigen::Vector3d>& truth,
+                  const std::vector<int> (&limbs)[2], double root_area) {
+  if (limbs[0].empty() || limbs[1].empty()) return -1.0;
+  return std::max(mean_truth_distance(map, truth, limbs[0]), mean_truth_distance(map, truth, limbs[1])) /
+         root_area * 100.0;
+}
+
 // Mean distance from the image of template vertex i to its true counterpart truth[i].
 double mean_truth_distance(const PairMapping& map, const std::vector<Eigen::Vector3d>& truth) {
   const Eigen::Index n = map.remesh_vertices.rows();
@@ -441,7 +506,22 @@ struct Tally {
   std::string max_gt_pair;
   double max_seconds = -1.0;
   std::string max_seconds_pair;
+  double max_hand_percent = -1.0;  // < 0: no pair with an SMPL template and ground truth
+  std::string max_hand_pair;
+  double max_foot_percent = -1.0;
+  std::string max_foot_pair;
 };
+
+// `figure` of `pair` if it is above `worst` (then `worst_pair` names it).
+void keep_worst(double figure, const std::string& pair, double& worst, std::string& worst_pair) {
+  if (figure > worst) {
+    worst = figure;
+    worst_pair = pair;
+  }
+}
+
+// `percent` as the table prints it, or "-" when negative (no figure).
+std::string percent_or_dash(double percent) { return percent < 0.0 ? "-" : format("%.3f", percent); }
 
 void print_summary(const std::vector<Configuration>& list, const std::map<std::string, Tally>& tallies) {
   std::printf("\nSummary over the pairs run (per configuration):\n");
@@ -459,6 +539,9 @@ void print_summary(const std::vector<Configuration>& list, const std::map<std::s
       else
         std::printf(", max gt error -");
       std::printf(", max %.2f s (%s)", t.max_seconds, t.max_seconds_pair.c_str());
+      if (t.max_hand_percent >= 0.0)
+        std::printf(", worst hand gt %.3f%% sqrt(A) (%s), worst foot gt %.3f%% sqrt(A) (%s)",
+                    t.max_hand_percent, t.max_hand_pair.c_str(), t.max_foot_percent, t.max_foot_pair.c_str());
     }
     std::printf("\n");
   }
@@ -476,9 +559,12 @@ void evaluate_pair(const PairSpec& pair, const fs::path& data, const std::string
               p.target.mesh.n_vertices(), floor);
   for (const std::string& note : p.notes) std::printf("(%s)\n", note.c_str());
   std::printf(
-      "| configuration | E_L2 | E_ang | flipped | strict | area ratio | gt error / diag | gt error %% sqrt(A) | "
-      "swaps | merges | optimize s | optimize map s | total s | floor x | released |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| configuration | E_L2 | E_ang | flipped | strict | area ratio | gt error / diag | gt error %% "
+      "sqrt(A) | "
+      "swaps | merges | optimize s | optimize map s | total s | floor x | released | worse hand gt %% "
+      "sqrt(A) | "
+      "worse foot gt %% sqrt(A) |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (Configuration& configuration : configurations()) {
     if (!only_configuration.empty() && configuration.name != only_configuration) continue;
     configuration.settings.max_released_anchors = max_released_anchors;
@@ -493,26 +579,27 @@ void evaluate_pair(const PairSpec& pair, const fs::path& data, const std::string
         const double percent = mean / root_area * 100.0;
         gt_diagonal = format("%.6f", mean / diagonal);
         gt_percent = format("%.3f", percent);
-        if (percent > tally.max_gt_percent) {
-          tally.max_gt_percent = percent;
-          tally.max_gt_pair = pair.name;
-        }
+        keep_worst(percent, pair.name, tally.max_gt_percent, tally.max_gt_pair);
       }
       const double e_l2 = map.distortion.all.e_l2;
-      std::printf("| %s | %.4f | %.4f | %zu | %d | %.4f | %s | %s | %d | %d | %.3f | %.3f | %.3f | %.1f | %s |\n",
-                  configuration.name.c_str(), e_l2, map.distortion.all.e_ang, map.quality.flipped_faces.size(),
-                  map.quality.strictly_folded_faces, map.quality.area_ratio, gt_diagonal.c_str(), gt_percent.c_str(),
-                  map.optimization.swaps, map.optimization.merges, map.seconds.optimize, map.seconds.optimize_map,
-                  map.seconds.total, map.seconds.total / floor, released_names(map).c_str());
+      const double hand = worse_limb(map, p.truth, p.hands, root_area);
+      const double foot = worse_limb(map, p.truth, p.feet, root_area);
+      std::printf(
+          "| %s | %.4f | %.4f | %zu | %d | %.4f | %s | %s | %d | %d | %.3f | %.3f | %.3f | %.1f | %s | %s | "
+          "%s |\n",
+          configuration.name.c_str(), e_l2, map.distortion.all.e_ang, map.quality.flipped_faces.size(),
+          map.quality.strictly_folded_faces, map.quality.area_ratio, gt_diagonal.c_str(), gt_percent.c_str(),
+          map.optimization.swaps, map.optimization.merges, map.seconds.optimize, map.seconds.optimize_map,
+          map.seconds.total, map.seconds.total / floor, released_names(map).c_str(),
+          percent_or_dash(hand).c_str(), percent_or_dash(foot).c_str());
+      keep_worst(hand, pair.name, tally.max_hand_percent, tally.max_hand_pair);
+      keep_worst(foot, pair.name, tally.max_foot_percent, tally.max_foot_pair);
       if (map.quality.strictly_folded_faces == 0) ++tally.no_strict_fold;
       if (!(e_l2 <= tally.max_e_l2)) {  // NaN counts as the worst
         tally.max_e_l2 = e_l2;
         tally.max_e_l2_pair = pair.name;
       }
-      if (map.seconds.total > tally.max_seconds) {
-        tally.max_seconds = map.seconds.total;
-        tally.max_seconds_pair = pair.name;
-      }
+      keep_worst(map.seconds.total, pair.name, tally.max_seconds, tally.max_seconds_pair);
     } catch (const Error& e) {
       ++tally.failed;
       std::printf("| %s | failed: %s |\n", configuration.name.c_str(), e.what());
