@@ -559,11 +559,9 @@ void evaluate_pair(const PairSpec& pair, const fs::path& data, const std::string
               p.target.mesh.n_vertices(), floor);
   for (const std::string& note : p.notes) std::printf("(%s)\n", note.c_str());
   std::printf(
-      "| configuration | E_L2 | E_ang | flipped | strict | area ratio | gt error / diag | gt error %% "
-      "sqrt(A) | "
-      "swaps | merges | optimize s | optimize map s | total s | floor x | released | worse hand gt %% "
-      "sqrt(A) | "
-      "worse foot gt %% sqrt(A) |\n");
+      "| configuration | E_L2 | E_ang | flipped | strict | area ratio | gt error / diag "
+      "| gt error %% sqrt(A) | swaps | merges | optimize s | optimize map s | total s | floor x | released "
+      "| worse hand gt %% sqrt(A) | worse foot gt %% sqrt(A) |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (Configuration& configuration : configurations()) {
     if (!only_configuration.empty() && configuration.name != only_configuration) continue;

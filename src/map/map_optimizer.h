@@ -285,9 +285,10 @@ class MapOptimizer {
   std::vector<int> anchor_of_pin_;                 // per pin: its anchor's index in anchor_pins_
   std::vector<std::vector<int>> in_face_anchors_;  // the pins of each anchor inside a face (or edge)
   std::vector<std::vector<int>> colours_;
-  std::vector<char> moved_;  // per vertex: whether it moved in the last sweep (by more than a settled step)
-  double settled_drop_ =
-      0.0;  // a step lowering its faces' energy by less has settled (0 in the openings' sweeps)
+  // Per vertex: whether it moved in the last sweep by more than a settled step, one lowering its
+  // faces' energy by less than settled_drop_ (0 in the openings' sweeps).
+  std::vector<char> moved_;
+  double settled_drop_ = 0.0;
   long long vertex_steps_ = 0;                    // steps tried in the sweeps
   std::vector<double> target_vertex_share_;       // per target vertex: its share of the target's area
   double coverage_margin_ = 0.0;                  // gap (target units) a target vertex may have for free
