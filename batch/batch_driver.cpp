@@ -169,6 +169,8 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
   options["extremity_anchors"] = settings.extremity_anchors;
   options["tip_rounds"] = settings.tip_rounds;
   options["map_carried_tips"] = settings.map_carried_tips;
+  options["pull_carried_tips"] = settings.pull_carried_tips;
+  options["whole_map_up_to"] = settings.whole_map_up_to;
   options["retry_doubtful_tips"] = settings.retry_doubtful_tips;
   options["untangle"] = settings.untangle;
   options["release_anchors"] = settings.max_released_anchors;
@@ -199,6 +201,7 @@ std::string implied_options_json() {
   before.extremity_anchors = false;
   before.tip_rounds = 1;
   before.retry_doubtful_tips = false;
+  before.pull_carried_tips = false;
   before.untangle = false;
   before.max_released_anchors = 0;
   before.optimize_map = false;

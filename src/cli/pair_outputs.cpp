@@ -127,16 +127,21 @@ nlohmann::json helpers_json(const std::vector<TipAnchor>& helpers, const LoadedM
   return list;
 }
 
-nlohmann::json extremity_anchors_json(const std::vector<ExtremityAnchor>& tips) {
+// `tips`, of which the last `pulled` the map was pulled onto rather than mapped through
+// (PairMapping::pulled_tips).
+nlohmann::json extremity_anchors_json(const std::vector<ExtremityAnchor>& tips, int pulled = 0) {
   nlohmann::json list = nlohmann::json::array();
-  for (const ExtremityAnchor& tip : tips) {
+  const std::size_t first_pulled = tips.size() - static_cast<std::size_t>(pulled);
+  for (std::size_t k = 0; k < tips.size(); ++k) {
+    const ExtremityAnchor& tip = tips[k];
     list.push_back({{"anchor", tip.specs[0].name},
                     {"template_vertex", std::get<AnchorVertex>(tip.specs[0].location).index},
                     {"target_vertex", std::get<AnchorVertex>(tip.specs[1].location).index},
                     {"mismatch", number(tip.mismatch())},
                     {"matched_by", tip.matched_by == TipMatching::through_map ? "through the first map"
                                    : tip.matched_by == TipMatching::by_cell   ? "by the landmark's cell"
-                                                                              : "by distances"}});
+                                                                              : "by distances"},
+                    {"pulled", k >= first_pulled}});
   }
   return list;
 }
@@ -182,7 +187,7 @@ nlohmann::json metrics_json(const LoadedMesh& source, const LoadedMesh& target, 
         {"limit", mapping.settings.max_maps},
         {"limit_reached", mapping.map_limit_reached}}},
       {"tip_anchors", helpers_json(mapping.tip_anchors, source, target)},
-      {"extremity_anchors", extremity_anchors_json(mapping.extremity_anchors)},
+      {"extremity_anchors", extremity_anchors_json(mapping.extremity_anchors, mapping.pulled_tips)},
       {"doubtful_tips", extremity_anchors_json(mapping.doubtful_tips)},
       {"released_anchors", released_json(mapping.released_anchors)},
       {"relaxation",

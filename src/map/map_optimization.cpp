@@ -87,7 +87,7 @@ MapOptimizationResult MapOptimizer::run() {
   const std::vector<SurfacePoint> start = locations_;
   result.flipped_before = count_folded();
   result.distortion_before = mean_unfolded_energy();
-  centre_in_face_anchors();
+  centre_anchors();
   // Lowering the energy, the barrier keeping every unfolded face unfolded and a folded face
   // changing only by opening. The energy is
   // measured again after each refresh of the coverage pulls: the recorded energy never rises
@@ -432,7 +432,9 @@ int MapOptimizer::strictly_folded_in_ring(int v, int moved, const SurfacePoint& 
 
 bool MapOptimizer::within_slack(int v, const Eigen::Vector3d& at) const {
   const int pin = pin_index_[v];
-  return pin < 0 || (at - pinned_[pin].landmark).norm() <= pinned_[pin].slack;
+  if (pin < 0) return true;
+  const Eigen::Vector3d& landmark = pinned_[pin].landmark;
+  return (at - landmark).norm() <= std::max(pinned_[pin].slack, (positions_[v] - landmark).norm());
 }
 
 bool MapOptimizer::move_vertex(int v) {

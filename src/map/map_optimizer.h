@@ -165,6 +165,8 @@ class MapOptimizer {
   Eigen::Vector3d ring_gradient(int v, const std::vector<FaceReferences>& references,
                                 const Eigen::Vector3d& at) const;
 
+  // Whether v's image may move to `at`: v is not pinned, or `at` lies within its slack of its
+  // landmark or no farther from it than v's image is now (a pin the centring left beyond).
   bool within_slack(int v, const Eigen::Vector3d& at) const;
 
   // How many of v's faces are strictly folded (strictly_folded), with `moved` (if >= 0) at `at`.
@@ -204,12 +206,14 @@ class MapOptimizer {
 
   // An anchor inside a face holds the face's corners where the layout's map put them, and there
   // the landmark's point of the face can lie well off the landmark where that map is squeezed
-  // about the anchor (up to 2.7 cm on FAUST's scan landmarks). The corners move together by the
-  // miss (or half or a quarter of it), alone or with the free vertices up to kLayRings rings about
-  // them, each walked along the target, while that shortens the miss and folds none of the faces
-  // about them more (by either reference or the strict count), a few times, until the miss is
-  // within the anchor's slack. The sweeps then relax what was dragged.
-  void centre_in_face_anchors();
+  // about the anchor (up to 2.7 cm on FAUST's scan landmarks); a vertex anchor with slack may
+  // start beyond it (a protrusion tip the map is pulled onto, map/pair_mapping.cpp). The corners
+  // (or the vertex) move together by the miss (or half or a quarter of it), alone or with the
+  // free vertices up to a few rings about them, each walked along the target, while that shortens
+  // the miss and folds none of the faces about them more (by either reference or the strict
+  // count), a few times, until the miss is within the anchor's slack (a tenth of it for a vertex
+  // anchor: map_local_moves.cpp says why). The sweeps then relax what was dragged.
+  void centre_anchors();
 
   // After each sweep, the corners of each anchor inside a face with slack move together down the
   // gradient of their faces' energy (in the target's plane under the first corner, half their

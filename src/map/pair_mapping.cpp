@@ -632,6 +632,63 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
   return with_tips_recorded(std::move(tipped), current, tips);
 }
 
+// The sweep tolerance (MapOptimizationSettings::tolerance) of a map pulled onto tips. It is a
+// fraction of the whole map's energy, and what the pull changes is a few fingers and toes: at the
+// map's own 1e-4 the sweeps stopped after 1 to 3 with the dragged fingers not yet relaxed (FAUST
+// 000/020 [29 anthropometric]: ground truth 0.69% of sqrt(area); 0.61% at 1e-6, against 0.71%
+// through a whole map), and most vertices are settled from the start, so the sweeps are cheap.
+constexpr double kPullTolerance = 1e-6;
+
+// `current` with its map optimized again from where it is, each of `tips` (every one carried by
+// it within the tip reach) pulled onto its partner and held within kTipSlack of the reach there,
+// when that is better than `current` (better_with_tips); nothing otherwise. No new layout: the
+// optimization moves every template vertex across patch boundaries anyway, and a tip the map
+// carries within the reach needs only dragging that far (PairSettings::pull_carried_tips).
+std::optional<AnchoredMap> pulled_onto_tips(const PairInputs& in, const AnchoredMap& current,
+                                            const std::vector<ExtremityAnchor>& tips, PairSeconds& seconds) {
+  if (tips.empty() || !in.settings.optimize_map) return std::nullopt;
+  if (in.on_stage) in.on_stage("pulling the map onto " + std::to_string(tips.size()) + " protrusion tips");
+  Stopwatch watch;
+  const PairSettings settings = tip_trial_settings(in, current, tips);
+  std::vector<PinnedVertex> pinned = pinned_vertices(current.map.anchors, in.source, in.target, settings);
+  const double slack = kTipSlack * in.settings.tip_reach * std::sqrt(surface_area(in.target));
+  int anchor = static_cast<int>(current.map.anchors[0].anchors.size());
+  for (const ExtremityAnchor& tip : tips) {
+    const int on_target = std::get<AnchorVertex>(tip.specs[1].location).index;
+    pinned.push_back({std::get<AnchorVertex>(tip.specs[0].location).index,
+                      position(in.target, in.target.vertex_handle(on_target)), slack, anchor++, 1.0});
+  }
+  const std::vector<std::array<int, 3>> faces = triangles_of(in.source);
+  MapOptimizationSettings pulling = settings.map_optimization;
+  pulling.tolerance = kPullTolerance;
+  const MapOptimizationResult pulled =
+      optimize_map(in.source, faces, in.target, current.map.correspondence, pinned, pulling);
+  seconds.optimize_map += watch.lap();
+  AnchoredMap trial = current;
+  PairMapping& map = trial.map;
+  map.correspondence = pulled.locations;
+  for (int v = 0; v < static_cast<int>(pulled.positions.size()); ++v)
+    map.remesh_vertices.row(v) = pulled.positions[v].transpose();
+  map.map_optimization.energy_after = pulled.distortion_after;
+  map.map_optimization.flipped_after = pulled.flipped_after;
+  map.map_optimization.sweeps += pulled.sweeps;
+  map.map_optimization.moved_vertices = pulled.moved_vertices;
+  if (!in.curves.empty())
+    map.curves = trace_curves_through_remesh(in.curves, in.source, in.target, ClosestPointIndex(in.target),
+                                             pulled.positions, faces);
+  seconds.compose += watch.lap();
+  measure_pair_mapping(map, in.source, in.target);
+  seconds.metrics += watch.lap();
+  if (!better_with_tips(map, current.map)) return std::nullopt;
+  map.extremity_anchors.insert(map.extremity_anchors.end(), tips.begin(), tips.end());
+  map.pulled_tips += static_cast<int>(tips.size());
+  for (const ExtremityAnchor& tip : tips) {
+    trial.source_anchors.anchors.push_back(tip.specs[0]);
+    trial.target_anchors.anchors.push_back(tip.specs[1]);
+  }
+  return trial;
+}
+
 // `lost`, a map through `current`'s anchors plus tips that folds and loses to `current`, mapped
 // again with helper anchors behind its own disagreeing corners (with_helpers_behind_tips), when
 // that map is better than `current`. A first map's folds may be removed by a later layout or by
@@ -695,9 +752,21 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   for (int v = 0; v < static_cast<int>(images.size()); ++v) images[v] = current.map.remesh_vertices.row(v).transpose();
   const std::vector<std::array<int, 3>> faces = triangles_of(in.source);
   const FirstMap first{images, faces};
-  const std::vector<ExtremityAnchor> through_map =
+  // A tip the map was pulled onto is no anchor of its layout, so it is found again: it is held already.
+  const auto pulled_already = [&](const ExtremityAnchor& tip) {
+    return std::any_of(current.map.extremity_anchors.end() - current.map.pulled_tips,
+                       current.map.extremity_anchors.end(), [&](const ExtremityAnchor& held) {
+                         for (int side = 0; side < 2; ++side)
+                           if (std::get<AnchorVertex>(held.specs[side].location).index ==
+                               std::get<AnchorVertex>(tip.specs[side].location).index)
+                             return true;
+                         return false;
+                       });
+  };
+  std::vector<ExtremityAnchor> through_map =
       match_extremities(in.source, on_source_ends.tips, in.target, on_target_ends.tips, first,
                         anchor_names(on_source), in.settings.max_tip_mismatch);
+  std::erase_if(through_map, pulled_already);
   const TipsAndAnchors source_side{in.source, on_source_ends, source_anchors, in.settings.tip_reach};
   const TipsAndAnchors target_side{in.target, on_target_ends, target_anchors, in.settings.tip_reach};
   // Tips matched through the map, and those matched by cell and by distances on top of them.
@@ -708,23 +777,41 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
     for (ExtremityAnchor& tip :
          match_extremities_by_distances(source_side, target_side, first, tips, anchor_names(on_source)))
       tips.push_back(std::move(tip));
+    std::erase_if(tips, pulled_already);
     return tips;
   };
   std::vector<ExtremityAnchor> tips = with_the_rest(through_map);
+  if (tips.empty()) return std::nullopt;
   // A round whose every tip the map already carries to its partner within the reach on both
-  // meshes is made only when asked (PairSettings::map_carried_tips, the default).
+  // meshes is made only when asked (PairSettings::map_carried_tips, the default), and then by
+  // pulling the map onto them rather than mapping through them (pull_carried_tips, the default).
   const auto carried = [&](const ExtremityAnchor& tip) { return tip.carried_within(in.settings.tip_reach); };
-  if (!in.settings.map_carried_tips && std::all_of(tips.begin(), tips.end(), carried)) return std::nullopt;
+  // On a small target a whole map through them is made too (PairSettings::whole_map_up_to): it is
+  // cheap there, and a new layout can mend what the optimization cannot.
+  std::optional<AnchoredMap> pulled;
+  if (std::all_of(tips.begin(), tips.end(), carried)) {
+    if (!in.settings.map_carried_tips) return std::nullopt;
+    if (in.settings.pull_carried_tips) {
+      pulled = pulled_onto_tips(in, current, tips, seconds);
+      if (static_cast<int>(in.target.n_vertices()) > in.settings.whole_map_up_to) return pulled;
+    }
+  }
+  const PairMapping* pulled_map = pulled ? &pulled->map : nullptr;
+  // The round's map: the whole map through tips when it beats the pulled one too.
+  const auto round_map = [&](std::optional<AnchoredMap> whole) {
+    return whole && (!pulled || better_with_tips(whole->map, pulled->map)) ? std::move(whole)
+                                                                           : std::move(pulled);
+  };
   std::optional<LostTrial> lost_folding;  // the first trial that lost with folds
   std::optional<AnchoredMap> tipped =
-      map_with_extremity_anchors(in, current, tips, seconds, nullptr, &lost_folding);
+      map_with_extremity_anchors(in, current, tips, seconds, pulled_map, &lost_folding);
   // The tips matched by distances rest on the others: a doubtful match through the first map (a
   // little finger taken for the thumb) makes them name the rest of the hand wrongly, and the
   // hand tangles. Then once more without them.
   const auto by_distances = [](const ExtremityAnchor& tip) { return tip.matched_by == TipMatching::by_distances; };
   if (!tipped && std::any_of(tips.begin(), tips.end(), by_distances)) {
     tips.erase(std::remove_if(tips.begin(), tips.end(), by_distances), tips.end());
-    tipped = map_with_extremity_anchors(in, current, tips, seconds, nullptr,
+    tipped = map_with_extremity_anchors(in, current, tips, seconds, pulled_map,
                                         lost_folding ? nullptr : &lost_folding);
   }
   // Only in the first round: a later round's trial holds the earlier tips too, its corners disagree
@@ -732,7 +819,7 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   // [scan]: 5 to 14 folds against the trial's 1 and 4, 5 to 7 s a pair spent for nothing).
   if (!tipped && lost_folding && in.settings.tip_anchors && current.map.extremity_anchors.empty())
     tipped = tips_with_helpers(in, current, *lost_folding, seconds);
-  if (!tipped || !in.settings.retry_doubtful_tips) return tipped;
+  if (!tipped || !in.settings.retry_doubtful_tips) return round_map(std::move(tipped));
   // A rival to the winner: the map through `rival_tips`, made without `left_out`, replaces it when
   // better (and reports `left_out` as doubtful).
   const auto try_rival = [&](std::vector<ExtremityAnchor> rival_tips, const ExtremityAnchor& left_out) {
@@ -771,13 +858,15 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   const auto worst = std::max_element(
       through_map.begin(), through_map.end(),
       [](const ExtremityAnchor& a, const ExtremityAnchor& b) { return a.larger_miss() < b.larger_miss(); });
-  if (worst == through_map.end() || worst->carried_within(2.0 * in.settings.tip_reach)) return tipped;
+  if (worst == through_map.end() || worst->carried_within(2.0 * in.settings.tip_reach))
+    return round_map(std::move(tipped));
   std::vector<ExtremityAnchor> others(through_map.begin(), worst);
   others.insert(others.end(), std::next(worst), through_map.end());
   const std::vector<ExtremityAnchor> without_doubtful = with_the_rest(std::move(others));
-  if (same_tips(without_doubtful, tips)) return tipped;  // the doubtful one matched again otherwise
+  if (same_tips(without_doubtful, tips))
+    return round_map(std::move(tipped));  // the doubtful one matched again otherwise
   try_rival(without_doubtful, *worst);
-  return tipped;
+  return round_map(std::move(tipped));
 }
 
 // A map through `start`'s anchors less some released one at a time, when `start` folds

@@ -66,6 +66,18 @@ struct PairSettings {
   /// a whole map less, but the tips' ends being carried does not make the fingers right (FAUST
   /// 000/030 [29 anthropometric]: the left hand's fingertips stay crumpled without it).
   bool map_carried_tips = true;
+  /// Make such a round by optimizing the map before it again with its tips pulled onto their
+  /// partners, instead of a whole map through them (no new layout: a carried tip needs dragging
+  /// within the reach only). The pulled map is kept by the same test as a whole map's. Measured
+  /// (session 31): the 50k-vertex bench pair 4.0 -> 2.7 s with a slightly better map; on the
+  /// realistic set 10 of 18 FAUST maps better by the truth, 2 worse (000/080 [73 CAESAR]: its worse
+  /// foot 0.62 -> 0.95% of sqrt(area), the toes a layout through them placed better).
+  bool pull_carried_tips = true;
+  /// On a target of at most this many vertices, such a round also makes the whole map through its
+  /// tips, kept when it beats the pulled map (better_with_tips): a whole map is cheap there, and a
+  /// new layout through more anchors can mend what the optimization of the map before cannot. 0:
+  /// the pulled map alone.
+  int whole_map_up_to = 20000;
   /// When a map through tips wins and the tip that the map it was matched through carried farthest
   /// from its partner missed by more than twice tip_reach (on either mesh), map once more without
   /// that tip (the others matched again without it) and keep the better map: a hand the first map
@@ -158,8 +170,8 @@ struct MapOptimizationSummary {
   double energy_after = 0.0;   ///< and of the optimized map (4 for an isometry up to scale)
   int flipped_before = 0;      ///< remesh faces folded or collapsed before
   int flipped_after = 0;       ///< and after (never more than before)
-  int sweeps = 0;              ///< sweeps over the free vertices
-  int moved_vertices = 0;      ///< template vertices whose image moved
+  int sweeps = 0;              ///< sweeps over the free vertices (a map pulled onto tips: both runs')
+  int moved_vertices = 0;      ///< template vertices whose image moved (a map pulled onto tips: in the pull)
 };
 
 /// The simplified copy a large target was mapped through (PairSettings::work_vertices); zeros
@@ -213,8 +225,11 @@ struct PairMapping {
   /// They are among `anchors`.
   std::vector<TipAnchor> tip_anchors;
   /// The helper anchors at protrusion tips the map passes through (PairSettings::extremity_anchors);
-  /// empty unless they made it better. They are among `anchors`.
+  /// empty unless they made it better. They are among `anchors`, but for the last pulled_tips.
   std::vector<ExtremityAnchor> extremity_anchors;
+  /// How many of extremity_anchors (the last ones) the map was pulled onto by optimizing it again
+  /// (PairSettings::pull_carried_tips) rather than mapped through: those are not among `anchors`.
+  int pulled_tips = 0;
   /// Tips a round matched and the kept map was made without (PairSettings::retry_doubtful_tips):
   /// one the map before carried farthest from its partner, by more than twice tip_reach, the map
   /// without it winning; or a match by cell whose rival won (ExtremityAnchor::rival_target). Not

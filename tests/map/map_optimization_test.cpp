@@ -233,6 +233,37 @@ TEST(MapOptimization, AnchorsWithSlackMoveTowardTheMapButStayWithinIt) {
   EXPECT_EQ(loose.flipped_after, 0);
 }
 
+// A protrusion tip the map is pulled onto (map/pair_mapping.cpp): a vertex anchor with slack whose
+// landmark lies 1.5 edges from where the map starts it, three times its slack. The sweeps alone
+// would keep it there (the start is the energy's minimum, and no step may leave it farther out);
+// it is dragged, with the rings about it, to its landmark first, and ends within its slack of it
+// without a fold.
+TEST(MapOptimization, AVertexAnchorBeyondItsSlackIsDraggedWithinIt) {
+  SimilarityCase pair(0.0);
+  const int tip = 333;
+  const Eigen::Vector3d normal =
+      to_eigen(pair.target.calc_face_normal(pair.target.face_handle(pair.truth[tip].face)));
+  const Eigen::Vector3d landmark = position(
+      pair.target,
+      walk_on_surface(pair.target, pair.truth[tip], 1.5 * pair.mean_edge * normal.unitOrthogonal()).value());
+  const double slack = 0.5 * pair.mean_edge;
+  std::vector<PinnedVertex> pinned = pair.pinned;
+  pinned.push_back({tip, landmark, slack, static_cast<int>(pinned.size()), 1.0});
+  ASSERT_GT((position(pair.target, pair.start[tip]) - landmark).norm(), 1.4 * pair.mean_edge);
+
+  const MapOptimizationResult result = optimize_map(pair.source, pair.faces, pair.target, pair.start, pinned);
+  EXPECT_LE(result.anchor_miss.back(), slack);
+  EXPECT_EQ(result.flipped_after, 0);
+  EXPECT_EQ(folded(pair.faces, result.locations, pair.target), 0);
+  for (std::size_t k = 1; k < result.energy.size(); ++k) {
+    const bool refreshed = std::find(result.refreshed.begin(), result.refreshed.end(), static_cast<int>(k)) !=
+                           result.refreshed.end();
+    if (!refreshed) {
+      EXPECT_LE(result.energy[k], result.energy[k - 1]) << k;
+    }
+  }
+}
+
 TEST(MapOptimization, UnfoldsAStartThatFolds) {
   SimilarityCase pair(0.0);
   // Throw a few images far across their rings: their faces fold.
