@@ -72,7 +72,7 @@ void assign_patches(Layout& layout);
 
 /// Whether two layouts are the same: the same combinatorics (edges, patches) embedded the same
 /// way on both sides (anchor vertices, chains, and the refined meshes: vertex positions, faces and
-/// their patches). Anything built from a layout is then the same for both (map/pair_mapping.cpp
+/// their patches). Anything built from a layout is then the same for both (map/whole_maps.cpp
 /// does not map a later layout again when it repeats one mapped before).
 bool same_layout(const Layout& a, const Layout& b);
 

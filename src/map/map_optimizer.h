@@ -207,7 +207,7 @@ class MapOptimizer {
   // An anchor inside a face holds the face's corners where the layout's map put them, and there
   // the landmark's point of the face can lie well off the landmark where that map is squeezed
   // about the anchor (up to 2.7 cm on FAUST's scan landmarks); a vertex anchor with slack may
-  // start beyond it (a protrusion tip the map is pulled onto, map/pair_mapping.cpp). The corners
+  // start beyond it (a protrusion tip the map is pulled onto, map/tip_rounds.cpp). The corners
   // (or the vertex) move together by the miss (or half or a quarter of it), alone or with the
   // free vertices up to a few rings about them, each walked along the target, while that shortens
   // the miss and folds none of the faces about them more (by either reference or the strict

@@ -1,0 +1,98 @@
+#pragma once
+/// \file
+/// The whole maps map_pair is made of (map/pair_mapping.h), for its translation units only
+/// (map/pair_mapping.cpp, map/tip_rounds.cpp): one map of the pair through given anchors (layout,
+/// base domain, patch maps, composition, optimization on the target, with its later layouts), what
+/// the pair's maps share, and the tests a map on other anchors must pass to replace another.
+
+#include "core/anchors.h"
+#include "core/feature_curves.h"
+#include "core/mesh.h"
+#include "map/map_optimization.h"
+#include "map/pair_mapping.h"
+#include "param/relaxation_memo.h"
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace xparam::pair_maps {
+
+// What the maps of one pair share. The whole maps (a layout built, optimized, parameterized,
+// composed and optimized on the target) it may still make (PairSettings::max_maps): the first map
+// is always made, a retry only while some are left; counted in maps, not seconds, so the results
+// stay deterministic. And the patch relaxations made so far, which later maps reuse where a patch
+// and its start are the same (param/relaxation_memo.h).
+struct PairWork {
+  int maps_left = 0;
+  bool reached = false;  // a retry was not made for want of maps
+  RelaxationMemo relaxations;
+
+  bool allows_another_map() {
+    if (maps_left <= 0) reached = true;
+    return maps_left > 0;
+  }
+};
+
+// What every further try of map_pair maps again from.
+struct PairInputs {
+  const Mesh& source;
+  const Mesh& target;
+  const std::vector<FeatureCurve>& curves;
+  const PairSettings& settings;
+  const StageCallback& on_stage;
+  PairWork& work;
+};
+
+// A map and the anchor sets it was made through.
+struct AnchoredMap {
+  PairMapping map;
+  AnchorSet source_anchors;
+  AnchorSet target_anchors;
+};
+
+// The anchors' names, in their order.
+std::vector<std::string> anchor_names(const PlacedAnchors& placed);
+
+// The template vertices an anchor holds, within its slack of the target's landmark: a vertex
+// anchor's vertex, or every corner of the face (or edge) an anchor inside it lies in, which move
+// only together (map/map_optimization.h).
+std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& anchors, const Mesh& source,
+                                          const Mesh& target, const PairSettings& settings);
+
+// map_pair on the anchors as given (no anchor released). When the first layout's map folds, later
+// layouts are tried only if `worth_retrying` (when given) accepts that map.
+PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
+                                const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
+                                const PairSettings& settings, PairWork& work, const StageCallback& on_stage,
+                                const std::function<bool(const PairMapping&)>& worth_retrying = {});
+
+// map_through_anchors, or nothing when those anchors cannot be laid out or parameterized.
+std::optional<PairMapping> map_if_possible(
+    const Mesh& source, const AnchorSet& source_anchors, const Mesh& target, const AnchorSet& target_anchors,
+    const std::vector<FeatureCurve>& curves, const PairSettings& settings, PairWork& work,
+    const StageCallback& on_stage, const std::function<bool(const PairMapping&)>& worth_retrying = {});
+
+// Whether `other` collapses no more template faces than `current` and covers the target's area
+// to 2%, or no worse than `current` beyond noise: what a map made on other anchors must keep to
+// replace the current one.
+bool keeps_faces_and_area(const PairMapping& other, const PairMapping& current);
+
+// Whether a map on other anchors (helpers added, or one more released) replaces the current
+// one: it folds less, collapses no more template faces, and covers the target's area to 2% or
+// no worse than the current map (a map that folds less by collapsing faces or by leaving part
+// of the target uncovered is not better).
+bool folds_less(const PairMapping& other, const PairMapping& current);
+
+// A map through `current`'s anchors plus helper anchors behind its tips, when `current` folds and
+// its corners disagree (PairSettings::tip_anchors): each of tip_anchor_reaches in turn until a
+// map has no fold, a map replacing the best so far when it folds less. Nothing when no try
+// folds less than `current`. A try's later layouts are made only if `worth_retrying` (when given)
+// accepts its first layout's map.
+std::optional<AnchoredMap> with_helpers_behind_tips(
+    const PairInputs& in, const AnchoredMap& current, PairSeconds& seconds,
+    const std::function<bool(const PairMapping&)>& worth_retrying = {});
+
+}  // namespace xparam::pair_maps
