@@ -68,10 +68,11 @@ struct PairSettings {
   bool map_carried_tips = true;
   /// Make such a round by optimizing the map before it again with its tips pulled onto their
   /// partners, instead of a whole map through them (no new layout: a carried tip needs dragging
-  /// within the reach only). The pulled map is kept by the same test as a whole map's. Measured
-  /// (session 31): the 50k-vertex bench pair 4.0 -> 2.7 s with a slightly better map; on the
-  /// realistic set 10 of 18 FAUST maps better by the truth, 2 worse (000/080 [73 CAESAR]: its worse
-  /// foot 0.62 -> 0.95% of sqrt(area), the toes a layout through them placed better).
+  /// within the reach only; with optimize_map off, the whole map). The pulled map is kept by the
+  /// same test as a whole map's. Measured (session 31): the 50k-vertex bench pair 4.0 -> 2.8 s with a
+  /// slightly better map (E_L2 1.02327 -> 1.02312); alone (whole_map_up_to 0) on the realistic set,
+  /// 8 of the 18 FAUST maps better by the truth and 2 worse (000/080 [73 CAESAR]: its worse foot
+  /// 0.62 -> 0.95% of sqrt(area), the toes a layout through them placed better).
   bool pull_carried_tips = true;
   /// On a target of at most this many vertices, such a round also makes the whole map through its
   /// tips, kept when it beats the pulled map (better_with_tips): a whole map is cheap there, and a

@@ -159,16 +159,21 @@ constexpr double kPullTolerance = 1e-6;
 // when that is better than `current` (better_with_tips); nothing otherwise. No new layout: the
 // optimization moves every template vertex across patch boundaries anyway, and a tip the map
 // carries within the reach needs only dragging that far (PairSettings::pull_carried_tips).
+// \pre in.settings.optimize_map
 std::optional<AnchoredMap> pulled_onto_tips(const PairInputs& in, const AnchoredMap& current,
                                             const std::vector<ExtremityAnchor>& tips, PairSeconds& seconds) {
-  if (tips.empty() || !in.settings.optimize_map) return std::nullopt;
+  if (tips.empty()) return std::nullopt;
   if (in.on_stage) in.on_stage("pulling the map onto " + std::to_string(tips.size()) + " protrusion tips");
   Stopwatch watch;
   const PairSettings settings = tip_trial_settings(in, current, tips);
   std::vector<PinnedVertex> pinned = pinned_vertices(current.map.anchors, in.source, in.target, settings);
   const double slack = kTipSlack * in.settings.tip_reach * std::sqrt(surface_area(in.target));
+  // The tips an earlier round pulled the map onto are no anchors of its layout: they are held too.
+  std::vector<ExtremityAnchor> held(current.map.extremity_anchors.end() - current.map.pulled_tips,
+                                    current.map.extremity_anchors.end());
+  held.insert(held.end(), tips.begin(), tips.end());
   int anchor = static_cast<int>(current.map.anchors[0].anchors.size());
-  for (const ExtremityAnchor& tip : tips) {
+  for (const ExtremityAnchor& tip : held) {
     const int on_target = std::get<AnchorVertex>(tip.specs[1].location).index;
     pinned.push_back({std::get<AnchorVertex>(tip.specs[0].location).index,
                       position(in.target, in.target.vertex_handle(on_target)), slack, anchor++, 1.0});
@@ -305,11 +310,12 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   // pulling the map onto them rather than mapping through them (pull_carried_tips, the default).
   const auto carried = [&](const ExtremityAnchor& tip) { return tip.carried_within(in.settings.tip_reach); };
   // On a small target a whole map through them is made too (PairSettings::whole_map_up_to): it is
-  // cheap there, and a new layout can mend what the optimization cannot.
+  // cheap there, and a new layout can mend what the optimization cannot. A map that is not
+  // optimized (--no-optimize-map) has only the whole map.
   std::optional<AnchoredMap> pulled;
   if (std::all_of(tips.begin(), tips.end(), carried)) {
     if (!in.settings.map_carried_tips) return std::nullopt;
-    if (in.settings.pull_carried_tips) {
+    if (in.settings.pull_carried_tips && in.settings.optimize_map) {
       pulled = pulled_onto_tips(in, current, tips, seconds);
       if (static_cast<int>(in.target.n_vertices()) > in.settings.whole_map_up_to) return pulled;
     }
