@@ -65,10 +65,10 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
   command.add_flag(
       "--map-carried-tips,!--no-map-carried-tips", settings.map_carried_tips,
       "Make a round of tips even when the map before already carries every one of them to its partner "
-      "within the tip reach (2.5% of sqrt(area)) on both meshes (default on). Off saves a whole map on "
-      "such pairs (the 50k-vertex bench pair: 4.0 -> 2.4 s) but leaves fingertips crumpled or blunt where "
-      "the round would round them (FAUST 000/030 with 29 landmarks: ground-truth error 0.58 -> 0.71% of "
-      "sqrt(area))");
+      "within the tip reach (2.5% of sqrt(area)) on both meshes (default on). Off saves that round on "
+      "such pairs (the 50k-vertex bench pair, whose round is pulled: 2.8 -> 2.5 s) but leaves fingertips "
+      "crumpled or blunt where the round would round them (FAUST 000/030 with 29 landmarks: ground-truth "
+      "error 0.58 -> 0.71% of sqrt(area))");
   command.add_flag(
       "--pull-carried-tips,!--no-pull-carried-tips", settings.pull_carried_tips,
       "Make such a round by optimizing the map before it again, its tips pulled onto their partners, "
