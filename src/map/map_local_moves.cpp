@@ -29,7 +29,7 @@ constexpr int kCentringRounds = 3;
 // millimetres and fold when dragged centimetres; 8 carry the finger's end. Measured on the
 // realistic set (session 31): centring to the slack with 3 rings left the pulled tips of FAUST
 // 000/030 [29 anthropometric] up to 2.4 cm off (its worse hand 0.45% of sqrt(area) off the truth,
-// 0.18% through a whole map); this way they come within 1.7 cm and the hand 0.17%.
+// 0.18% through a whole map); this way, the hand 0.17%.
 constexpr double kTipCentringAim = 0.1;
 constexpr int kTipCentringRounds = 6;
 constexpr int kTipDragRings = 8;
