@@ -167,7 +167,6 @@ std::optional<AnchoredMap> pulled_onto_tips(const PairInputs& in, const Anchored
   Stopwatch watch;
   const PairSettings settings = tip_trial_settings(in, current, tips);
   std::vector<PinnedVertex> pinned = pinned_vertices(current.map.anchors, in.source, in.target, settings);
-  const double slack = kTipSlack * in.settings.tip_reach * std::sqrt(surface_area(in.target));
   // The tips an earlier round pulled the map onto are no anchors of its layout: they are held too.
   std::vector<ExtremityAnchor> held(current.map.extremity_anchors.end() - current.map.pulled_tips,
                                     current.map.extremity_anchors.end());
@@ -176,7 +175,8 @@ std::optional<AnchoredMap> pulled_onto_tips(const PairInputs& in, const Anchored
   for (const ExtremityAnchor& tip : held) {
     const int on_target = std::get<AnchorVertex>(tip.specs[1].location).index;
     pinned.push_back({std::get<AnchorVertex>(tip.specs[0].location).index,
-                      position(in.target, in.target.vertex_handle(on_target)), slack, anchor++, 1.0});
+                      position(in.target, in.target.vertex_handle(on_target)),
+                      settings.anchor_slack_by_name.at(tip.specs[0].name), anchor++, 1.0});
   }
   const std::vector<std::array<int, 3>> faces = triangles_of(in.source);
   MapOptimizationSettings pulling = settings.map_optimization;
