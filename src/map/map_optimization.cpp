@@ -181,11 +181,15 @@ bool MapOptimizer::sweep() {
     }
   }
   std::fill(moved_.begin(), moved_.end(), 0);
+  std::vector<int> stepping;  // the active vertices of one colour
   for (const std::vector<int>& colour : colours_) {
-    for (int v : colour) vertex_steps_ += active[v];
-    tbb::parallel_for(0, static_cast<int>(colour.size()), [&](int k) {
-      if (active[colour[k]]) moved_[colour[k]] = move_vertex(colour[k]);
-    });
+    stepping.clear();
+    for (int v : colour) {
+      if (active[v]) stepping.push_back(v);
+    }
+    vertex_steps_ += static_cast<long long>(stepping.size());
+    tbb::parallel_for(0, static_cast<int>(stepping.size()),
+                      [&](int k) { moved_[stepping[k]] = move_vertex(stepping[k]); });
   }
   return std::find(moved_.begin(), moved_.end(), 1) != moved_.end();
 }

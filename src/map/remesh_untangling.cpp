@@ -84,6 +84,7 @@ class Untangler {
     moved_.assign(n, false);
     changed_.assign(n, 0);
     ring_failed_.assign(n, -1);
+    star_failed_.assign(n, {-1, {}});
     flipped_.assign(faces_.size(), false);
     for (std::size_t f = 0; f < faces_.size(); ++f) flipped_[f] = quality(static_cast<int>(f), {}) < 0.0;
   }
@@ -174,6 +175,7 @@ class Untangler {
     if (!touches_flip) return false;
     std::optional<StarMove> star = flatten_star(source_, vh);
     if (!star) return false;
+    if (star_unchanged_since_failure(v, *star)) return false;
 
     // The fan centre: where phi puts v now when that is inside the star's kernel.
     const SurfacePoint current = points_[v];
@@ -237,7 +239,14 @@ class Untangler {
         best = i;
       }
     }
-    if (best < 0 || !improves(before, trials[best].score)) return false;
+    if (best < 0 || !improves(before, trials[best].score)) {
+      std::vector<int> read;  // the corners of the faces scored: what the trials read
+      for (int f : check) read.insert(read.end(), faces_[f].begin(), faces_[f].end());
+      std::sort(read.begin(), read.end());
+      read.erase(std::unique(read.begin(), read.end()), read.end());
+      star_failed_[v] = {commits_, std::move(read)};
+      return false;
+    }
 
     star->to = targets[best];
     commit(std::move(*star), affected, trials[best].points, trials[best].images, check, trials[best].score);
@@ -302,6 +311,21 @@ class Untangler {
     }
     turns.clear();
     for (const MappedPoint& image : images) turns.push_back(turn(image));
+  }
+
+  // Whether the last star move tried at v failed and nothing it read has changed since: no image
+  // of a corner of the faces it scored, and no moved point into `star`. It would fail the same way
+  // (a vertex whose neighbourhood stays folded is visited in every round).
+  bool star_unchanged_since_failure(int v, const StarMove& star) const {
+    const auto& [failed, read] = star_failed_[v];
+    if (failed < 0) return false;
+    for (int u : read) {
+      if (changed_[u] > failed) return false;
+    }
+    for (int u : moved_list_) {
+      if (changed_[u] > failed && apply_touches(star, points_[u])) return false;
+    }
+    return true;
   }
 
   // Record a kept move: the new points and images of the vertices it carries, the faces it
@@ -652,6 +676,8 @@ class Untangler {
   int commits_ = 0;                // moves kept so far
   std::vector<int> changed_;       // #V: moves kept when phi(x_i) last changed
   std::vector<int> ring_failed_;   // #V: moves kept when a ring move about it last failed, or -1
+  // #V: moves kept when a star move about it last failed (or -1), and the vertices it read.
+  std::vector<std::pair<int, std::vector<int>>> star_failed_;
   std::vector<bool> flipped_;      // #F: remesh face flipped now
   TemplateWarp warp_;
 };
