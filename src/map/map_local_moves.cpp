@@ -209,6 +209,7 @@ void MapOptimizer::place(int v, const Image& image) {
   locations_[v] = image.location;
   positions_[v] = image.position;
   normals_[v] = image.normal;
+  for (const Incidence& in : incidences_[v]) face_cache_[in.face].valid = false;
 }
 
 std::vector<int> MapOptimizer::faces_about(const std::vector<int>& vertices) const {

@@ -72,6 +72,7 @@ MapOptimizer::MapOptimizer(const Mesh& source, const std::vector<std::array<int,
   for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
     for (int c = 0; c < 3; ++c) incidences_[faces_[f][c]].push_back({f, c});
   }
+  face_cache_.resize(faces_.size());
   pin_index_.assign(n_vertices, -1);
   for (std::size_t k = 0; k < pinned.size(); ++k) pin_index_[pinned[k].vertex] = static_cast<int>(k);
   pinned_ = pinned;
@@ -264,8 +265,8 @@ Eigen::Matrix2d MapOptimizer::jacobian(int f, const FaceReferences& reference, i
          rest_inverse_[f];
 }
 
-MapOptimizer::FaceValue MapOptimizer::face_value(int f, const FaceReferences& reference, int moved,
-                                                 const Eigen::Vector3d& at) const {
+MapOptimizer::FaceValue MapOptimizer::face_distortion(int f, const FaceReferences& reference, int moved,
+                                                      const Eigen::Vector3d& at) const {
   PlaneFrame frame;
   const Eigen::Matrix2d j = jacobian(f, reference, moved, at, frame);
   FaceValue value;
@@ -274,8 +275,24 @@ MapOptimizer::FaceValue MapOptimizer::face_value(int f, const FaceReferences& re
   value.against_corners = frame.against_corners || !frame.valid;
   value.energy =
       weight_[f] * (value.folded ? kFoldedFaceEnergy : foldover_free_energy(j, settings_.area_weight));
+  return value;
+}
+
+MapOptimizer::FaceValue MapOptimizer::face_value(int f, const FaceReferences& reference, int moved,
+                                                 const Eigen::Vector3d& at) const {
+  FaceValue value = face_distortion(f, reference, moved, at);
   value.energy += coverage_energy(f, moved, at);
   return value;
+}
+
+const MapOptimizer::FaceCache& MapOptimizer::cached(int f) const {
+  FaceCache& entry = face_cache_[f];
+  if (!entry.valid) {
+    entry.references = reference_normal(f);
+    entry.distortion = face_distortion(f, entry.references, -1, {});
+    entry.valid = true;
+  }
+  return entry;
 }
 
 double MapOptimizer::total_coverage_energy() const {
@@ -357,8 +374,10 @@ void MapOptimizer::refresh_coverage() {
 
 MapOptimizer::EnergySum MapOptimizer::total_energy() const {
   std::vector<FaceValue> values(faces_.size());
-  tbb::parallel_for(0, static_cast<int>(faces_.size()),
-                    [&](int f) { values[f] = face_value(f, reference_normal(f), -1, {}); });
+  tbb::parallel_for(0, static_cast<int>(faces_.size()), [&](int f) {
+    values[f] = cached(f).distortion;
+    values[f].energy += coverage_energy(f, -1, {});
+  });
   EnergySum sum;
   for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {  // in face order: the same at any thread count
     sum.total += values[f].energy;
@@ -383,23 +402,39 @@ double MapOptimizer::mean_unfolded_energy() const {
 
 int MapOptimizer::count_folded() const {
   int folded = 0;
-  for (int f = 0; f < static_cast<int>(faces_.size()); ++f)
-    folded += face_value(f, reference_normal(f), -1, {}).folded;
+  for (int f = 0; f < static_cast<int>(faces_.size()); ++f) folded += cached(f).distortion.folded;
   return folded;
 }
 
 std::vector<FaceReferences> MapOptimizer::ring_references(int v) const {
   std::vector<FaceReferences> references;
   references.reserve(incidences_[v].size());
-  for (const Incidence& in : incidences_[v]) references.push_back(reference_normal(in.face));
+  for (const Incidence& in : incidences_[v]) references.push_back(cached(in.face).references);
   return references;
 }
 
 MapOptimizer::FaceValue MapOptimizer::ring_value(int v, const std::vector<FaceReferences>& references,
-                                                 const Eigen::Vector3d& at) const {
+                                                 const Eigen::Vector3d& at,
+                                                 std::vector<FaceValue>* distortions) const {
   FaceValue ring;
+  if (distortions) distortions->resize(incidences_[v].size());
   for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
-    const FaceValue value = face_value(incidences_[v][k].face, references[k], v, at);
+    const int f = incidences_[v][k].face;
+    FaceValue value = face_distortion(f, references[k], v, at);
+    if (distortions) (*distortions)[k] = value;
+    value.energy += coverage_energy(f, v, at);
+    ring.energy += value.energy;
+    ring.against_own += value.against_own;
+    ring.against_corners += value.against_corners;
+  }
+  return ring;
+}
+
+MapOptimizer::FaceValue MapOptimizer::ring_value_now(int v) const {
+  FaceValue ring;
+  for (const Incidence& in : incidences_[v]) {
+    FaceValue value = cached(in.face).distortion;
+    value.energy += coverage_energy(in.face, -1, {});
     ring.energy += value.energy;
     ring.against_own += value.against_own;
     ring.against_corners += value.against_corners;
@@ -447,7 +482,7 @@ bool MapOptimizer::move_vertex(int v) {
   const SurfacePoint& here = locations_[v];
   const Eigen::Vector3d x = positions_[v];
   const std::vector<FaceReferences> references = ring_references(v);
-  const FaceValue ring_before = ring_value(v, references, x);
+  const FaceValue ring_before = ring_value_now(v);
   const double before = ring_before.energy;
   if (!std::isfinite(before)) return false;
   // Strictly folded faces are among those folded against their corners' target faces.
@@ -501,6 +536,7 @@ bool MapOptimizer::move_vertex(int v) {
 
   const Eigen::Vector3d step = direction.x() * tangent.u + direction.y() * tangent.v;
   std::vector<FaceReferences> moved_references(ring.size());
+  std::vector<FaceValue> distortions;
   // Over-relaxed first, then the whole step, then halved (MapOptimizationSettings::over_relaxation).
   const auto next_fraction = [](double fraction) { return fraction > 1.0 ? 1.0 : 0.5 * fraction; };
   double fraction = settings_.over_relaxation;
@@ -512,7 +548,7 @@ bool MapOptimizer::move_vertex(int v) {
     const Eigen::Vector3d there_normal = reference_.interpolated_normal(*there);
     for (std::size_t k = 0; k < ring.size(); ++k)
       moved_references[k] = reference_normal(ring[k].face, v, *there, there_normal);
-    const FaceValue ring_after = ring_value(v, moved_references, y);
+    const FaceValue ring_after = ring_value(v, moved_references, y, &distortions);
     const double after = ring_after.energy;
     // A folded face may change only by opening, by each count.
     if (ring_after.against_own > ring_before.against_own ||
@@ -522,6 +558,8 @@ bool MapOptimizer::move_vertex(int v) {
       continue;
     if (after < before + 1e-4 * fraction * slope) {
       place(v, {*there, y, there_normal});
+      for (std::size_t k = 0; k < ring.size(); ++k)
+        face_cache_[ring[k].face] = {true, moved_references[k], distortions[k]};
       return before - after > settled_drop_;
     }
   }

@@ -125,6 +125,20 @@ class MapOptimizer {
   // either reference (chord_edges).
   FaceValue face_value(int f, const FaceReferences& reference, int moved, const Eigen::Vector3d& at) const;
 
+  // face_value without the coverage pulls: the distortion alone.
+  FaceValue face_distortion(int f, const FaceReferences& reference, int moved,
+                            const Eigen::Vector3d& at) const;
+
+  // Face f's references and distortion at the current images. They change only when a corner
+  // moves (place), and a sweep step reads them for every face of its vertex's ring, so they are
+  // kept (face_cache_) until then; the values are those computed afresh, bit for bit.
+  struct FaceCache {
+    bool valid = false;
+    FaceReferences references;
+    FaceValue distortion;
+  };
+  const FaceCache& cached(int f) const;
+
   double total_coverage_energy() const;
 
   // The coverage pulls on face f, with `moved` (if >= 0) at `at`.
@@ -155,7 +169,12 @@ class MapOptimizer {
 
   // Energy of v's faces with v's image at `at` (`references` the faces' references there), and
   // how many are folded against each reference (`folded` unset).
-  FaceValue ring_value(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at) const;
+  // `distortions`, when given, receives each face's face_distortion.
+  FaceValue ring_value(int v, const std::vector<FaceReferences>& references, const Eigen::Vector3d& at,
+                       std::vector<FaceValue>* distortions = nullptr) const;
+
+  // ring_value at v's current image, from the cache.
+  FaceValue ring_value_now(int v) const;
 
   // The references of v's faces (incidences_[v] order) at the current images.
   std::vector<FaceReferences> ring_references(int v) const;
@@ -275,6 +294,10 @@ class MapOptimizer {
   std::vector<SurfacePoint> locations_;
   std::vector<Eigen::Vector3d> positions_;
   std::vector<Eigen::Vector3d> normals_;  // the target's interpolated normal at each image
+  // Per template face (cached). Filled on demand by const readers: an entry is written only by
+  // the task that owns its face (the one vertex of a sweep's colour on it, or the face's own
+  // index in a loop over faces), so parallel sweeps never share one.
+  mutable std::vector<FaceCache> face_cache_;
   // Whether a sweep's step must fold no face more by the strict count either (the sweeps after
   // the openings: they relax the rings moved and must not trade an opened fold for a strict one).
   bool keep_strict_folds_ = false;

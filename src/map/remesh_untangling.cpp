@@ -3,6 +3,7 @@
 #include "core/errors.h"
 #include "core/stopwatch.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -10,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -86,7 +86,8 @@ class Untangler {
     ring_failed_.assign(n, -1);
     star_failed_.assign(n, {-1, {}});
     flipped_.assign(faces_.size(), false);
-    for (std::size_t f = 0; f < faces_.size(); ++f) flipped_[f] = quality(static_cast<int>(f), {}) < 0.0;
+    for (std::size_t f = 0; f < faces_.size(); ++f)
+      flipped_[f] = quality(static_cast<int>(f), Replacements{}) < 0.0;
   }
 
   UntangleResult run() {
@@ -131,17 +132,24 @@ class Untangler {
   }
 
  private:
+  // Images standing in for a few vertices' (those a trial move carries: a handful, so a linear
+  // search), and the image of v with them.
+  using Replacements = std::vector<std::pair<int, const MappedPoint*>>;
+  const MappedPoint* image_of(int v, const Replacements& replaced) const {
+    for (const auto& [u, image] : replaced) {
+      if (u == v) return image;
+    }
+    return &images_[v];
+  }
+
   // Quality of remesh face f, with the images of some vertices replaced: rho, its signed area
   // along the reference normal over the template face's area scaled to the target's, folded so
   // 1 is best (min(rho, 1/rho)) when positive; rho itself when flipped (negative, so a face
   // that folds less scores higher), 0 when degenerate.
-  double quality(int f, const std::map<int, const MappedPoint*>& replaced) const {
+  double quality(int f, const Replacements& replaced) const {
     const std::array<int, 3>& t = faces_[f];
     const MappedPoint* corner[3];
-    for (int c = 0; c < 3; ++c) {
-      const auto it = replaced.find(t[c]);
-      corner[c] = it != replaced.end() ? it->second : &images_[t[c]];
-    }
+    for (int c = 0; c < 3; ++c) corner[c] = image_of(t[c], replaced);
     const Eigen::Vector3d normal =
         (corner[1]->position - corner[0]->position).cross(corner[2]->position - corner[0]->position);
     if (normal.norm() == 0.0) return 0.0;
@@ -155,7 +163,7 @@ class Untangler {
     return rho > 0.0 ? std::min(rho, 1.0 / rho) : 0.0;
   }
 
-  Score score(const std::vector<int>& faces, const std::map<int, const MappedPoint*>& replaced) const {
+  Score score(const std::vector<int>& faces, const Replacements& replaced) const {
     Score s;
     s.worst = std::numeric_limits<double>::infinity();
     for (int f : faces) {
@@ -206,7 +214,7 @@ class Untangler {
     }
     std::sort(check.begin(), check.end());
     check.erase(std::unique(check.begin(), check.end()), check.end());
-    const Score before = score(check, {});
+    const Score before = score(check, Replacements{});
 
     const std::vector<Eigen::Vector2d> targets = candidates(*star);
     struct Trial {
@@ -215,20 +223,24 @@ class Untangler {
       Score score;
     };
     std::vector<Trial> trials(targets.size());
-    tbb::parallel_for(0, static_cast<int>(targets.size()), [&](int i) {
-      StarMove move = *star;
-      move.to = targets[i];
-      Trial& trial = trials[i];
-      std::map<int, const MappedPoint*> replaced;
-      trial.points.reserve(affected.size());
-      trial.images.reserve(affected.size());
-      for (int u : affected) {
-        trial.points.push_back(apply_star(move, points_[u]));
-        trial.images.push_back(gamma_(trial.points.back()));
-      }
-      for (std::size_t a = 0; a < affected.size(); ++a) replaced[affected[a]] = &trial.images[a];
-      trial.score = score(check, replaced);
-    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(targets.size())),
+                      [&](const tbb::blocked_range<int>& range) {
+                        StarMove move = *star;  // one copy per task
+                        Replacements replaced(affected.size());
+                        for (int i = range.begin(); i != range.end(); ++i) {
+                          move.to = targets[i];
+                          Trial& trial = trials[i];
+                          trial.points.reserve(affected.size());
+                          trial.images.reserve(affected.size());
+                          for (int u : affected) {
+                            trial.points.push_back(apply_star(move, points_[u]));
+                            trial.images.push_back(gamma_(trial.points.back()));
+                          }
+                          for (std::size_t a = 0; a < affected.size(); ++a)
+                            replaced[a] = {affected[a], &trial.images[a]};
+                          trial.score = score(check, replaced);
+                        }
+                      });
 
     // Fewest flips, then the best worst face.
     int best = -1;
@@ -438,19 +450,28 @@ class Untangler {
     std::vector<Eigen::Vector3d> place_normal(places.size());
     for (std::size_t i = 0; i < places.size(); ++i)
       place_normal[i] = reference_.interpolated_normal(place_images[i].on_input);
-    std::vector<Eigen::Vector2d> trial = move.from;
-    std::vector<const Eigen::Vector3d*> at(n_disc);
-    std::vector<const Eigen::Vector3d*> normal(n_disc);
-    auto reset = [&](int u) {
-      trial[u] = move.from[u];
-      at[u] = &images_[move.vertices[u]].position;
-      normal[u] = &stay_normal[u];
+    // Where the search has the disc's vertices: their flat places, images and image normals. Each
+    // parallel task of the search has its own.
+    struct DiscState {
+      std::vector<Eigen::Vector2d> trial;
+      std::vector<const Eigen::Vector3d*> at;
+      std::vector<const Eigen::Vector3d*> normal;
     };
-    for (int u = 0; u < n_disc; ++u) reset(u);
-    auto approximate_quality = [&](int f) {
+    auto reset = [&](DiscState& state, int u) {
+      state.trial[u] = move.from[u];
+      state.at[u] = &images_[move.vertices[u]].position;
+      state.normal[u] = &stay_normal[u];
+    };
+    auto staying = [&]() {
+      DiscState state{std::vector<Eigen::Vector2d>(n_disc), std::vector<const Eigen::Vector3d*>(n_disc),
+                      std::vector<const Eigen::Vector3d*>(n_disc)};
+      for (int u = 0; u < n_disc; ++u) reset(state, u);
+      return state;
+    };
+    auto approximate_quality = [&](const DiscState& state, int f) {
       const std::array<int, 3>& c = move.corners[f];
-      const Eigen::Vector3d n = (*at[c[1]] - *at[c[0]]).cross(*at[c[2]] - *at[c[0]]);
-      const Eigen::Vector3d reference = *normal[c[0]] + *normal[c[1]] + *normal[c[2]];
+      const Eigen::Vector3d n = (*state.at[c[1]] - *state.at[c[0]]).cross(*state.at[c[2]] - *state.at[c[0]]);
+      const Eigen::Vector3d reference = *state.normal[c[0]] + *state.normal[c[1]] + *state.normal[c[2]];
       const double dot = n.dot(reference);
       const double length = reference.norm();
       if (n.norm() == 0.0 || length == 0.0) return 0.0;
@@ -459,23 +480,24 @@ class Untangler {
       return std::min(rho, 1.0 / rho);
     };
     // Cost of the given disc faces with ring slot j at option o for each (j, o); infinite when a
-    // flat face is not positive.
-    auto cost_of = [&](const std::vector<int>& faces,
+    // flat face is not positive. `state` is left as it was.
+    auto cost_of = [&](DiscState& state, const std::vector<int>& faces,
                        std::initializer_list<std::pair<int, int>> slot_options) {
       RingCost cost;
       for (const auto& [j, o] : slot_options) {
         if (o == 0) continue;
-        trial[j + 1] = places[o - 1];
-        at[j + 1] = &place_images[o - 1].position;
-        normal[j + 1] = &place_normal[o - 1];
-        cost.slack += kMoveWeight * (trial[j + 1] - move.from[j + 1]).norm() / radius;
+        state.trial[j + 1] = places[o - 1];
+        state.at[j + 1] = &place_images[o - 1].position;
+        state.normal[j + 1] = &place_normal[o - 1];
+        cost.slack += kMoveWeight * (state.trial[j + 1] - move.from[j + 1]).norm() / radius;
       }
       for (int f : faces) {
-        if (!(disc_area2(move, trial, f) > kMinArea * disc_area2(move, move.rest, f))) cost.flips = kInvalid;
+        if (!(disc_area2(move, state.trial, f) > kMinArea * disc_area2(move, move.rest, f)))
+          cost.flips = kInvalid;
       }
       for (int f : faces) {
         if (cost.flips >= kInvalid) break;
-        const double q = approximate_quality(f);
+        const double q = approximate_quality(state, f);
         if (q < 0.0) {
           ++cost.flips;
           cost.fold -= q;
@@ -483,9 +505,10 @@ class Untangler {
           cost.slack += std::max(0.0, kComfort - q);
         }
       }
-      for (const auto& [j, o] : slot_options) reset(j + 1);
+      for (const auto& [j, o] : slot_options) reset(state, j + 1);
       return cost;
     };
+    DiscState state = staying();
     std::vector<std::vector<int>> options(k);
     std::vector<std::vector<RingCost>> unary(k);
     std::vector<std::vector<int>> direction(k);  // per option: its image's direction bucket, -1 staying
@@ -493,7 +516,7 @@ class Untangler {
       const int last = blocked_[move.vertices[j + 1]] ? 1 : n_options;
       std::vector<std::pair<RingCost, int>> ranked;
       for (int o = 0; o < last; ++o) {
-        const RingCost c = cost_of(single[j], {{j, o}});
+        const RingCost c = cost_of(state, single[j], {{j, o}});
         if (c.flips < kInvalid) ranked.emplace_back(c, o);
       }
       if (ranked.empty()) return false;
@@ -522,11 +545,11 @@ class Untangler {
     for (int j = 0; j < k; ++j) {
       const int next = (j + 1) % k;
       binary[j].assign(options[j].size(), std::vector<RingCost>(options[next].size()));
-      for (std::size_t a = 0; a < options[j].size(); ++a) {
-        for (std::size_t b = 0; b < options[next].size(); ++b) {
-          binary[j][a][b] = cost_of(pair[j], {{j, options[j][a]}, {next, options[next][b]}});
-        }
-      }
+      tbb::parallel_for(0, static_cast<int>(options[j].size()), [&](int a) {
+        DiscState row = staying();
+        for (std::size_t b = 0; b < options[next].size(); ++b)
+          binary[j][a][b] = cost_of(row, pair[j], {{j, options[j][a]}, {next, options[next][b]}});
+      });
     }
 
     // Cheapest choice around the cycle: fix an option of the slot with the fewest (only the
@@ -545,12 +568,17 @@ class Untangler {
       firsts.push_back(a);
     }
     auto slot = [&](int t) { return (start + t) % k; };
-    RingCost best_total;
-    best_total.flips = kInvalid;
-    std::vector<int> best_choice;  // per slot, an index into its options
-    std::vector<std::vector<RingCost>> total(k);
-    std::vector<std::vector<int>> back(k);
-    for (std::size_t first : firsts) {
+    // The chains from different first options are independent: they run in parallel, and the
+    // cheapest is taken in the order of `firsts`, the earliest on a tie, as one loop over them would.
+    struct Chain {
+      RingCost cost{kInvalid, 0.0, 0.0};
+      std::vector<int> choice;  // per slot, an index into its options
+    };
+    std::vector<Chain> chains(firsts.size());
+    tbb::parallel_for(0, static_cast<int>(firsts.size()), [&](int f) {
+      const std::size_t first = firsts[f];
+      std::vector<std::vector<RingCost>> total(k);
+      std::vector<std::vector<int>> back(k);
       total[0].assign(options[start].size(), RingCost{kInvalid, 0.0, 0.0});
       total[0][first] = unary[start][first];
       for (int t = 1; t < k; ++t) {
@@ -571,18 +599,26 @@ class Untangler {
         }
       }
       const int last = slot(k - 1);
+      Chain& chain = chains[f];
       for (std::size_t b = 0; b < options[last].size(); ++b) {
         if (total[k - 1][b].flips >= kInvalid || binary[last][b][first].flips >= kInvalid) continue;
         const RingCost c = total[k - 1][b] + binary[last][b][first];
-        if (!(c < best_total)) continue;
-        best_total = c;
-        best_choice.assign(k, 0);
+        if (!(c < chain.cost)) continue;
+        chain.cost = c;
+        chain.choice.assign(k, 0);
         int choice = static_cast<int>(b);
         for (int t = k - 1; t >= 0; --t) {
-          best_choice[slot(t)] = choice;
+          chain.choice[slot(t)] = choice;
           if (t > 0) choice = back[t][choice];
         }
       }
+    });
+    RingCost best_total{kInvalid, 0.0, 0.0};
+    std::vector<int> best_choice;  // per slot, an index into its options
+    for (Chain& chain : chains) {
+      if (!(chain.cost < best_total)) continue;
+      best_total = chain.cost;
+      best_choice = std::move(chain.choice);
     }
     if (best_total.flips >= kInvalid) return false;
     bool any = false;
@@ -603,15 +639,15 @@ class Untangler {
       if (ring_moves_point(move, points_[u])) affected.push_back(u);
     }
     const std::vector<int> check = faces_around(affected);
-    const Score before = score(check, {});
+    const Score before = score(check, Replacements{});
     std::vector<SurfacePoint> points(affected.size());
     std::vector<MappedPoint> images(affected.size());
     tbb::parallel_for(0, static_cast<int>(affected.size()), [&](int a) {
       points[a] = apply_ring(move, points_[affected[a]]);
       images[a] = gamma_(points[a]);
     });
-    std::map<int, const MappedPoint*> after_images;
-    for (std::size_t a = 0; a < affected.size(); ++a) after_images[affected[a]] = &images[a];
+    Replacements after_images;
+    for (std::size_t a = 0; a < affected.size(); ++a) after_images.emplace_back(affected[a], &images[a]);
     const Score after = score(check, after_images);
     if (!improves(before, after)) return false;
     commit(std::move(move), affected, points, images, check, after);
