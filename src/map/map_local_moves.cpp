@@ -74,7 +74,7 @@ bool MapOptimizer::open_remaining_folds() {
 }
 
 bool MapOptimizer::folded_by_either_count(int f) const {
-  return face_value(f, reference_normal(f), -1, {}).against_own || strictly_folded(f, -1, {}, {});
+  return cached(f).distortion.against_own || strictly_folded(f, -1, {}, {});
 }
 
 std::vector<int> MapOptimizer::held_anchor_of(int f) const {
@@ -225,7 +225,7 @@ std::vector<int> MapOptimizer::faces_about(const std::vector<int>& vertices) con
 MapOptimizer::FoldTally MapOptimizer::tally(const std::vector<int>& faces) const {
   FoldTally sum;
   for (int f : faces) {
-    const FaceValue value = face_value(f, reference_normal(f), -1, {});
+    const FaceValue value = face_value_now(f);
     sum.energy += value.energy;
     sum.against_own += value.against_own;
     sum.against_corners += value.against_corners;

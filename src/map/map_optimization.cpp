@@ -295,6 +295,12 @@ const MapOptimizer::FaceCache& MapOptimizer::cached(int f) const {
   return entry;
 }
 
+MapOptimizer::FaceValue MapOptimizer::face_value_now(int f) const {
+  FaceValue value = cached(f).distortion;
+  value.energy += coverage_energy(f, -1, {});
+  return value;
+}
+
 double MapOptimizer::total_coverage_energy() const {
   double sum = 0.0;
   for (int f = 0; f < static_cast<int>(pulls_.size()); ++f) sum += coverage_energy(f, -1, {});
@@ -374,10 +380,7 @@ void MapOptimizer::refresh_coverage() {
 
 MapOptimizer::EnergySum MapOptimizer::total_energy() const {
   std::vector<FaceValue> values(faces_.size());
-  tbb::parallel_for(0, static_cast<int>(faces_.size()), [&](int f) {
-    values[f] = cached(f).distortion;
-    values[f].energy += coverage_energy(f, -1, {});
-  });
+  tbb::parallel_for(0, static_cast<int>(faces_.size()), [&](int f) { values[f] = face_value_now(f); });
   EnergySum sum;
   for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {  // in face order: the same at any thread count
     sum.total += values[f].energy;
@@ -390,11 +393,9 @@ double MapOptimizer::mean_unfolded_energy() const {
   double energy = 0.0;
   double weight = 0.0;
   for (int f = 0; f < static_cast<int>(faces_.size()); ++f) {
-    PlaneFrame frame;
-    const FaceReferences reference = reference_normal(f);
-    if (face_value(f, reference, -1, {}).folded) continue;
-    const Eigen::Matrix2d j = jacobian(f, reference, -1, {}, frame);
-    energy += weight_[f] * foldover_free_energy(j, settings_.area_weight);
+    const FaceValue& distortion = cached(f).distortion;
+    if (distortion.folded) continue;
+    energy += distortion.energy;
     weight += weight_[f];
   }
   return weight > 0.0 ? energy / weight : 0.0;
@@ -433,8 +434,7 @@ MapOptimizer::FaceValue MapOptimizer::ring_value(int v, const std::vector<FaceRe
 MapOptimizer::FaceValue MapOptimizer::ring_value_now(int v) const {
   FaceValue ring;
   for (const Incidence& in : incidences_[v]) {
-    FaceValue value = cached(in.face).distortion;
-    value.energy += coverage_energy(in.face, -1, {});
+    const FaceValue value = face_value_now(in.face);
     ring.energy += value.energy;
     ring.against_own += value.against_own;
     ring.against_corners += value.against_corners;

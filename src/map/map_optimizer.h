@@ -139,6 +139,9 @@ class MapOptimizer {
   };
   const FaceCache& cached(int f) const;
 
+  // face_value at the current images, from the cache.
+  FaceValue face_value_now(int f) const;
+
   double total_coverage_energy() const;
 
   // The coverage pulls on face f, with `moved` (if >= 0) at `at`.
