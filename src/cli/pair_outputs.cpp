@@ -140,6 +140,7 @@ nlohmann::json extremity_anchors_json(const std::vector<ExtremityAnchor>& tips, 
                     {"mismatch", number(tip.mismatch())},
                     {"matched_by", tip.matched_by == TipMatching::through_map ? "through the first map"
                                    : tip.matched_by == TipMatching::by_cell   ? "by the landmark's cell"
+                                   : tip.matched_by == TipMatching::in_row    ? "in a row beside a tip"
                                                                               : "by distances"},
                     {"pulled", k >= first_pulled}});
   }

@@ -438,4 +438,103 @@ std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors
   return by_distances;
 }
 
+std::vector<std::pair<int, int>> align_rows(int n, int m, const std::function<double(int, int)>& pair_cost,
+                                            double skip_cost) {
+  // cost[i][j]: the cheapest alignment of the first i of one row with the first j of the other.
+  std::vector<std::vector<double>> cost(n + 1, std::vector<double>(m + 1, 0.0));
+  enum Step : char { kPair, kSkipFirst, kSkipSecond };
+  std::vector<std::vector<Step>> step(n + 1, std::vector<Step>(m + 1, kPair));
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= m; ++j) {
+      if (i == 0 && j == 0) continue;
+      double best = std::numeric_limits<double>::infinity();
+      if (i > 0 && j > 0) {
+        const double paired = cost[i - 1][j - 1] + pair_cost(i - 1, j - 1);
+        if (paired < best) {
+          best = paired;
+          step[i][j] = kPair;
+        }
+      }
+      if (i > 0 && cost[i - 1][j] + skip_cost < best) {
+        best = cost[i - 1][j] + skip_cost;
+        step[i][j] = kSkipFirst;
+      }
+      if (j > 0 && cost[i][j - 1] + skip_cost < best) {
+        best = cost[i][j - 1] + skip_cost;
+        step[i][j] = kSkipSecond;
+      }
+      cost[i][j] = best;
+    }
+  }
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = n, j = m; i > 0 || j > 0;) {
+    if (i > 0 && j > 0 && step[i][j] == kPair) {
+      pairs.push_back({--i, --j});
+    } else if (i > 0 && (j == 0 || step[i][j] == kSkipFirst)) {
+      --i;
+    } else {
+      --j;
+    }
+  }
+  std::reverse(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+std::vector<ExtremityAnchor> match_short_tip_rows(
+    const TipsAndAnchors& source, const std::vector<int>& source_short, const TipsAndAnchors& target,
+    const std::vector<int>& target_short, const FirstMap& map, const std::vector<ExtremityAnchor>& matched,
+    const std::vector<std::string>& taken, double max_mismatch) {
+  std::vector<ExtremityAnchor> rows;
+  if (matched.empty()) return rows;
+  // Each matched tip's row on one mesh: the short tips nearer it than any other matched tip,
+  // beyond a third of the reach (not the tip itself) and within kRowReaches, by distance from it.
+  const auto rows_beside = [&](const TipsAndAnchors& side, const std::vector<int>& shorts, int mesh_side) {
+    const double reach = side.reach * std::sqrt(surface_area(side.mesh));
+    std::vector<std::vector<std::pair<double, int>>> beside(matched.size());
+    for (int v : shorts) {
+      const Eigen::Vector3d at = position(side.mesh, side.mesh.vertex_handle(v));
+      int nearest = -1;
+      double nearest_distance = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < matched.size(); ++k) {
+        const int tip = std::get<AnchorVertex>(matched[k].specs[mesh_side].location).index;
+        const double d = (position(side.mesh, side.mesh.vertex_handle(tip)) - at).norm();
+        if (d < nearest_distance) {
+          nearest_distance = d;
+          nearest = static_cast<int>(k);
+        }
+      }
+      if (nearest_distance <= kShortTipReach * reach || nearest_distance > kRowReaches * reach) continue;
+      beside[nearest].push_back({nearest_distance, v});
+    }
+    for (auto& row : beside) std::sort(row.begin(), row.end());
+    return beside;
+  };
+  const auto source_rows = rows_beside(source, source_short, 0);
+  const auto target_rows = rows_beside(target, target_short, 1);
+  const TipMismatch mismatch(source.mesh, target.mesh, map);
+  std::vector<std::string> names = taken;
+  for (const ExtremityAnchor& tip : matched) names.push_back(tip.specs[0].name);
+  for (std::size_t k = 0; k < matched.size(); ++k) {
+    const auto& source_row = source_rows[k];
+    const auto& target_row = target_rows[k];
+    if (source_row.empty() || target_row.empty()) continue;
+    std::vector<Eigen::Vector3d> preimages;
+    for (const auto& [distance, t] : target_row) preimages.push_back(mismatch.preimage(t));
+    const auto pair_cost = [&](int i, int j) {
+      const double cost = mismatch(source_row[i].second, target_row[j].second, preimages[j]);
+      return cost < max_mismatch ? cost : std::numeric_limits<double>::infinity();
+    };
+    for (const auto& [i, j] : align_rows(static_cast<int>(source_row.size()),
+                                         static_cast<int>(target_row.size()), pair_cost, kRowSkipCost)) {
+      const int s = source_row[i].second;
+      const int t = target_row[j].second;
+      ExtremityAnchor anchor =
+          tip_anchor(s, t, mismatch.misses(s, t, preimages[j]), matched.size() + rows.size() + 1, names);
+      anchor.matched_by = TipMatching::in_row;
+      rows.push_back(std::move(anchor));
+    }
+  }
+  return rows;
+}
+
 }  // namespace xparam

@@ -22,7 +22,9 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace xparam {
@@ -49,6 +51,7 @@ enum class TipMatching {
   through_map,   ///< match_extremities: each other's nearest through the first map
   by_cell,       ///< match_extremities_by_cell: the farthest tips in one landmark's cell
   by_distances,  ///< match_extremities_by_distances: distances to the landmarks and matched tips near
+  in_row,        ///< match_short_tip_rows: aligned in a row beside a matched tip (small toes)
 };
 
 /// A tip matched on both meshes.
@@ -126,5 +129,37 @@ std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors
                                                             const FirstMap& map,
                                                             const std::vector<ExtremityAnchor>& matched,
                                                             const std::vector<std::string>& taken);
+
+/// Short tips (small toes) are the extremities (`extremities`) at this fraction of the tip reach:
+/// at the full reach a small toe is no tip of its own, the foot ends in the big toe alone.
+constexpr double kShortTipReach = 1.0 / 3.0;
+/// A row beside a matched tip reaches this many tip reaches from it.
+constexpr double kRowReaches = 3.0;
+/// What leaving a short tip out of a row's alignment costs, against a pair's mismatch through the
+/// first map (a fraction of sqrt(area), as ExtremityAnchor::mismatch): a spurious bump beside the
+/// big toe, or a toe one mesh lacks, is left out rather than sliding every pair after it by one.
+constexpr double kRowSkipCost = 0.02;
+
+/// The cheapest monotone alignment of two rows of n and m items, as in sequence alignment: pairs
+/// (i, j) with i and j both increasing, each costing pair_cost(i, j) (infinite: never paired), every
+/// item left unpaired costing skip_cost. On a tie a pair is preferred, then leaving out the first
+/// row's item. Returns the pairs in increasing order.
+std::vector<std::pair<int, int>> align_rows(int n, int m, const std::function<double(int, int)>& pair_cost,
+                                            double skip_cost);
+
+/// Small toes as rows (session 32). Toes shorter than the tip reach are no tips, and the
+/// optimization squeezes them together where the first map did. Each tip in `matched` gets a row
+/// on each mesh: the short tips (`source_short`, `target_short`: extremities at kShortTipReach of
+/// the reach) nearer it than any other matched tip, beyond kShortTipReach and within kRowReaches
+/// reaches of it, in order of distance from it. The two rows are aligned (align_rows): a pair costs
+/// its mismatch through `map` (infinite from max_mismatch on), a short tip left out kRowSkipCost.
+/// Ranking the rows alone slid every toe by one beside a spurious bump or a missing toe (3 of 6
+/// FAUST feet). Names as in match_extremities_by_cell.
+std::vector<ExtremityAnchor> match_short_tip_rows(const TipsAndAnchors& source,
+                                                  const std::vector<int>& source_short,
+                                                  const TipsAndAnchors& target,
+                                                  const std::vector<int>& target_short, const FirstMap& map,
+                                                  const std::vector<ExtremityAnchor>& matched,
+                                                  const std::vector<std::string>& taken, double max_mismatch);
 
 }  // namespace xparam

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <limits>
 #include <variant>
 
 namespace xparam {
@@ -248,6 +249,53 @@ TEST_F(HandOfTips, MirrorTipsAreLeftUnmatchedUntilALandmarkTellsThemApart) {
   EXPECT_EQ(pairs(match_extremities_by_distances({mesh, tips, off_axis, 0.1}, {target, tips, off_axis, 0.1},
                                                  {images, faces}, {thumb}, {})),
             (std::vector<std::pair<int, int>>{{a, a}, {b, b}}));
+}
+
+// Two rows of positions, the second with a spurious item between its first two: paired by rank
+// every item after it would slide by one; aligned, it is left out and the rest pair exactly.
+TEST(AlignRows, LeavesOutASpuriousItemRatherThanSlidingTheRestByOne) {
+  const std::vector<double> first = {0.10, 0.20, 0.30};
+  const std::vector<double> second = {0.10, 0.15, 0.20, 0.30};
+  const auto cost = [&](int i, int j) { return std::abs(first[i] - second[j]); };
+  EXPECT_EQ(align_rows(3, 4, cost, 0.02), (std::vector<std::pair<int, int>>{{0, 0}, {1, 2}, {2, 3}}));
+  // Rows of one length, the second lacking the last item and with the spurious one: aligning
+  // leaves out two items where ranking leaves out none, so it pays only while leaving out is cheap.
+  const std::vector<double> lacking = {0.10, 0.15, 0.20};
+  const auto lacking_cost = [&](int i, int j) { return std::abs(first[i] - lacking[j]); };
+  EXPECT_EQ(align_rows(3, 3, lacking_cost, 0.02), (std::vector<std::pair<int, int>>{{0, 0}, {1, 2}}));
+  EXPECT_EQ(align_rows(3, 3, lacking_cost, 1.0), (std::vector<std::pair<int, int>>{{0, 0}, {1, 1}, {2, 2}}));
+  // A pair of infinite cost is never made, however dear leaving out is.
+  const auto never_first = [&](int i, int j) {
+    return i == 0 ? std::numeric_limits<double>::infinity() : lacking_cost(i, j);
+  };
+  EXPECT_EQ(align_rows(3, 3, never_first, 1.0), (std::vector<std::pair<int, int>>{{1, 1}, {2, 2}}));
+  EXPECT_TRUE(align_rows(0, 4, cost, 0.02).empty());
+}
+
+// Short tips in a row beside the thumb (the +x corner), through the identity map: the target has
+// one more, a bump between the template's first two. The rows pair each short tip with itself and
+// leave the bump out.
+TEST_F(HandOfTips, ShortTipsInARowBesideAMatchedTipAreAlignedThroughTheMap) {
+  const int a = at(0.75, 0.0, 0.25), b = at(10.0 / 12, 2.0 / 12, 0.0), d = at(0.5, 0.0, 0.5);
+  const int bump = at(9.0 / 12, 1.0 / 12, 2.0 / 12);  // 0.31 from the thumb: between b (0.24) and a (0.35)
+  std::vector<Eigen::Vector3d> identity;
+  for (VertexHandle v : mesh.vertices()) identity.push_back(position(mesh, v));
+  const Extremities none;
+  const std::vector<int> no_anchors;
+  const TipsAndAnchors source{mesh, none, no_anchors, 0.1};
+  const TipsAndAnchors target{mesh, none, no_anchors, 0.1};
+  const std::vector<ExtremityAnchor> rows = match_short_tip_rows(source, {a, b, d}, target, {d, bump, a, b},
+                                                                 {identity, faces}, {thumb}, {"tip 2"}, 0.1);
+  EXPECT_EQ(pairs(rows), (std::vector<std::pair<int, int>>{{b, b}, {a, a}, {d, d}}));
+  ASSERT_EQ(rows.size(), 3u);
+  for (const ExtremityAnchor& tip : rows) {
+    EXPECT_EQ(tip.matched_by, TipMatching::in_row);
+    EXPECT_NEAR(tip.mismatch(), 0.0, 1e-12);
+  }
+  EXPECT_EQ(rows[0].specs[0].name, "tip 2'");  // names avoid those taken
+  // Without a matched tip there is no row.
+  EXPECT_TRUE(match_short_tip_rows(source, {a, b, d}, target, {d, bump, a, b}, {identity, faces}, {}, {}, 0.1)
+                  .empty());
 }
 
 }  // namespace
