@@ -509,6 +509,8 @@ std::vector<ExtremityAnchor> match_short_tip_rows(
     for (auto& row : beside) std::sort(row.begin(), row.end());
     return beside;
   };
+  const double source_root_area = std::sqrt(surface_area(source.mesh));
+  const double target_root_area = std::sqrt(surface_area(target.mesh));
   const auto source_rows = rows_beside(source, source_short, 0);
   const auto target_rows = rows_beside(target, target_short, 1);
   const TipMismatch mismatch(source.mesh, target.mesh, map);
@@ -521,8 +523,11 @@ std::vector<ExtremityAnchor> match_short_tip_rows(
     std::vector<Eigen::Vector3d> preimages;
     for (const auto& [distance, t] : target_row) preimages.push_back(mismatch.preimage(t));
     const auto pair_cost = [&](int i, int j) {
-      const double cost = mismatch(source_row[i].second, target_row[j].second, preimages[j]);
-      return cost < max_mismatch ? cost : std::numeric_limits<double>::infinity();
+      const double miss = mismatch(source_row[i].second, target_row[j].second, preimages[j]);
+      if (!(miss < max_mismatch)) return std::numeric_limits<double>::infinity();
+      const double from_tip =
+          std::abs(source_row[i].first / source_root_area - target_row[j].first / target_root_area);
+      return miss + kRowDistanceWeight * from_tip;
     };
     for (const auto& [i, j] : align_rows(static_cast<int>(source_row.size()),
                                          static_cast<int>(target_row.size()), pair_cost, kRowSkipCost)) {

@@ -135,10 +135,17 @@ std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors
 constexpr double kShortTipReach = 1.0 / 3.0;
 /// A row beside a matched tip reaches this many tip reaches from it.
 constexpr double kRowReaches = 3.0;
-/// What leaving a short tip out of a row's alignment costs, against a pair's mismatch through the
-/// first map (a fraction of sqrt(area), as ExtremityAnchor::mismatch): a spurious bump beside the
-/// big toe, or a toe one mesh lacks, is left out rather than sliding every pair after it by one.
+/// What leaving a short tip out of a row's alignment costs, against a pair's cost (fractions of
+/// sqrt(area)): a spurious bump beside the big toe, or a toe one mesh lacks, is left out rather
+/// than sliding every pair after it by one.
 constexpr double kRowSkipCost = 0.02;
+/// A pair's cost in a row: its mismatch through the first map (ExtremityAnchor::mismatch) plus this
+/// many times the difference of the two tips' distances from the row's matched tip. Where the first
+/// map slid a foot's toes by one, the mismatch alone paired them slid (FAUST 000/020 [29]: 0.031 +
+/// 0.024 and two tips left out against 0.044 + 0.035 + 0.030 for the right pairs); the distances
+/// from the big toe do not depend on the map (the right pairs differ by 0.001-0.003, the slid ones
+/// by 0.014).
+constexpr double kRowDistanceWeight = 2.0;
 
 /// The cheapest monotone alignment of two rows of n and m items, as in sequence alignment: pairs
 /// (i, j) with i and j both increasing, each costing pair_cost(i, j) (infinite: never paired), every
@@ -152,7 +159,8 @@ std::vector<std::pair<int, int>> align_rows(int n, int m, const std::function<do
 /// on each mesh: the short tips (`source_short`, `target_short`: extremities at kShortTipReach of
 /// the reach) nearer it than any other matched tip, beyond kShortTipReach and within kRowReaches
 /// reaches of it, in order of distance from it. The two rows are aligned (align_rows): a pair costs
-/// its mismatch through `map` (infinite from max_mismatch on), a short tip left out kRowSkipCost.
+/// its mismatch through `map` (infinite from max_mismatch on) plus kRowDistanceWeight times the
+/// difference of its distances from the matched tip, a short tip left out kRowSkipCost.
 /// Ranking the rows alone slid every toe by one beside a spurious bump or a missing toe (3 of 6
 /// FAUST feet). Names as in match_extremities_by_cell.
 std::vector<ExtremityAnchor> match_short_tip_rows(const TipsAndAnchors& source,
