@@ -488,8 +488,11 @@ std::vector<ExtremityAnchor> match_short_tip_rows(
   if (matched.empty()) return rows;
   // Each matched tip's row on one mesh: the short tips nearer it than any other matched tip,
   // beyond a third of the reach (not the tip itself) and within kRowReaches, by distance from it.
-  const auto rows_beside = [&](const TipsAndAnchors& side, const std::vector<int>& shorts, int mesh_side) {
-    const double reach = side.reach * std::sqrt(surface_area(side.mesh));
+  const double source_root_area = std::sqrt(surface_area(source.mesh));
+  const double target_root_area = std::sqrt(surface_area(target.mesh));
+  const auto rows_beside = [&](const TipsAndAnchors& side, const std::vector<int>& shorts, int mesh_side,
+                               double root_area) {
+    const double reach = side.reach * root_area;
     std::vector<std::vector<std::pair<double, int>>> beside(matched.size());
     for (int v : shorts) {
       const Eigen::Vector3d at = position(side.mesh, side.mesh.vertex_handle(v));
@@ -509,10 +512,8 @@ std::vector<ExtremityAnchor> match_short_tip_rows(
     for (auto& row : beside) std::sort(row.begin(), row.end());
     return beside;
   };
-  const double source_root_area = std::sqrt(surface_area(source.mesh));
-  const double target_root_area = std::sqrt(surface_area(target.mesh));
-  const auto source_rows = rows_beside(source, source_short, 0);
-  const auto target_rows = rows_beside(target, target_short, 1);
+  const auto source_rows = rows_beside(source, source_short, 0, source_root_area);
+  const auto target_rows = rows_beside(target, target_short, 1, target_root_area);
   const TipMismatch mismatch(source.mesh, target.mesh, map);
   std::vector<std::string> names = taken;
   for (const ExtremityAnchor& tip : matched) names.push_back(tip.specs[0].name);

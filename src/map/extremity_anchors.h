@@ -154,7 +154,7 @@ constexpr double kRowDistanceWeight = 2.0;
 std::vector<std::pair<int, int>> align_rows(int n, int m, const std::function<double(int, int)>& pair_cost,
                                             double skip_cost);
 
-/// Small toes as rows (session 32). Toes shorter than the tip reach are no tips, and the
+/// Small toes as rows (session 33). Toes shorter than the tip reach are no tips, and the
 /// optimization squeezes them together where the first map did. Each tip in `matched` gets a row
 /// on each mesh: the short tips (`source_short`, `target_short`: extremities at kShortTipReach of
 /// the reach) nearer it than any other matched tip, beyond kShortTipReach and within kRowReaches
