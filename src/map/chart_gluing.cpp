@@ -266,8 +266,11 @@ class Gluing {
           Chart{{p}, {RigidMotion{}}, {(*input_.source_in_target)[p]}, input_.energy[p], input_.area[p]};
       chart_of[p] = p;
     }
+    // A union of two charts that neither changed in the last round was tried in it and left
+    // (the same charts give the same union, the same gain): only changed charts are tried again.
+    std::vector<bool> changed(n_patches, true);
     for (int round = 0; round < settings_.max_rounds; ++round) {
-      const std::vector<Candidate> candidates = candidates_of(charts, chart_of);
+      const std::vector<Candidate> candidates = candidates_of(charts, chart_of, changed);
       std::vector<std::optional<Chart>> unions(candidates.size());
       tbb::parallel_for(0, static_cast<int>(candidates.size()), [&](int i) {
         const Candidate& candidate = candidates[i];
@@ -285,10 +288,12 @@ class Gluing {
       std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return gain[x] > gain[y]; });
       std::vector<bool> taken(n_patches, false);
       std::vector<int> kept;
+      std::fill(changed.begin(), changed.end(), false);
       for (size_t i : order) {
         const Candidate& candidate = candidates[i];
         if (!(gain[i] > 0.0) || taken[candidate.onto] || taken[candidate.moving]) continue;
         taken[candidate.onto] = taken[candidate.moving] = true;
+        changed[candidate.onto] = true;
         for (int p : charts[candidate.moving]->patches) chart_of[p] = candidate.onto;
         charts[candidate.onto] = std::move(unions[i]);
         charts[candidate.moving].reset();
@@ -303,10 +308,11 @@ class Gluing {
   }
 
  private:
-  // Every (high-energy chart, chart across one of its curves) pair, each pair once, the
-  // high-energy chart (the lower index when both are) keeping its plane.
+  // Every (high-energy chart, chart across one of its curves) pair with a chart that `changed`,
+  // each pair once, the high-energy chart (the lower index when both are) keeping its plane.
   std::vector<Candidate> candidates_of(const std::vector<std::optional<Chart>>& charts,
-                                       const std::vector<int>& chart_of) const {
+                                       const std::vector<int>& chart_of,
+                                       const std::vector<bool>& changed) const {
     std::vector<Candidate> candidates;
     std::vector<std::pair<int, int>> seen;
     for (size_t g = 0; g < charts.size(); ++g) {
@@ -314,7 +320,7 @@ class Gluing {
       for (int p : charts[g]->patches) {
         for (int halfedge : input_.layout->patches[p]) {
           const int h = chart_of[places_[layout_opposite(halfedge)][0]];
-          if (h == static_cast<int>(g)) continue;
+          if (h == static_cast<int>(g) || (!changed[g] && !changed[h])) continue;
           const std::pair<int, int> key = std::minmax(static_cast<int>(g), h);
           if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
           seen.push_back(key);
