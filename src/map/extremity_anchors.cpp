@@ -528,7 +528,7 @@ std::vector<ExtremityAnchor> match_short_tip_rows(
       if (!(miss < max_mismatch)) return std::numeric_limits<double>::infinity();
       const double from_tip =
           std::abs(source_row[i].first / source_root_area - target_row[j].first / target_root_area);
-      return miss + kRowDistanceWeight * from_tip;
+      return kRowMissWeight * miss + kRowDistanceWeight * from_tip;
     };
     for (const auto& [i, j] : align_rows(static_cast<int>(source_row.size()),
                                          static_cast<int>(target_row.size()), pair_cost, kRowSkipCost)) {
