@@ -141,11 +141,10 @@ constexpr double kRowReaches = 3.0;
 constexpr double kRowSkipCost = 0.02;
 /// A pair's cost in a row: kRowMissWeight times its mismatch through the first map
 /// (ExtremityAnchor::mismatch) plus this many times the difference of the two tips' distances from
-/// the row's matched tip. Where the first
-/// map slid a foot's toes by one, the mismatch alone paired them slid (FAUST 000/020 [29]: 0.031 +
-/// 0.024 and two tips left out against 0.044 + 0.035 + 0.030 for the right pairs); the distances
-/// from the big toe do not depend on the map (the right pairs differ by 0.001-0.003, the slid ones
-/// by 0.014).
+/// the row's matched tip. Where the first map slid a foot's toes by one, the mismatch alone paired
+/// them slid (FAUST 000/020 [29]: 0.031 + 0.024 and two tips left out against 0.044 + 0.035 + 0.030
+/// for the right pairs); the distances from the big toe do not depend on the map (the right pairs
+/// differ by 0.001-0.003, the slid ones by 0.014).
 constexpr double kRowDistanceWeight = 2.0;
 /// The mismatch's weight in a pair's cost. Where the first map squeezed the small toes into whorls,
 /// the right pairs miss by 0.037-0.044 sqrt(area) through it, more than leaving both tips out
@@ -166,10 +165,10 @@ std::vector<std::pair<int, int>> align_rows(int n, int m, const std::function<do
 /// on each mesh: the short tips (`source_short`, `target_short`: extremities at kShortTipReach of
 /// the reach) nearer it than any other matched tip, beyond kShortTipReach and within kRowReaches
 /// reaches of it, in order of distance from it. The two rows are aligned (align_rows): a pair costs
-/// kRowMissWeight times its mismatch through `map` (infinite from max_mismatch on) plus kRowDistanceWeight
-/// times the difference of its distances from the matched tip, a short tip left out kRowSkipCost. Ranking the
-/// rows alone slid every toe by one beside a spurious bump or a missing toe (3 of 6 FAUST feet). Names as in
-/// match_extremities_by_cell.
+/// kRowMissWeight times its mismatch through `map` (infinite from max_mismatch on) plus
+/// kRowDistanceWeight times the difference of its distances from the matched tip, a short tip left
+/// out kRowSkipCost. Ranking the rows alone slid every toe by one beside a spurious bump or a missing
+/// toe (3 of 6 FAUST feet). Names as in match_extremities_by_cell.
 std::vector<ExtremityAnchor> match_short_tip_rows(const TipsAndAnchors& source,
                                                   const std::vector<int>& source_short,
                                                   const TipsAndAnchors& target,
