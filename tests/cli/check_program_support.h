@@ -1,6 +1,6 @@
 #pragma once
-// Running `xparam check` and scripts/check_shared_data.py as programs, output captured, for the
-// check command's tests.
+// Running `xparam check` and the scripts (check_shared_data.py, update_evaluation.py) as programs,
+// output captured, for their tests.
 #include "support/test_data.h"
 
 #include <sys/wait.h>

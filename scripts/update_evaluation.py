@@ -1,0 +1,269 @@
+#!/usr/bin/env python3
+"""Rerun the evaluation and replace the generated tables of docs/evaluation.md.
+
+Usage:
+  python3 scripts/update_evaluation.py [--evaluate build/bench/xparam_evaluate] [--data DIR]
+      [--doc docs/evaluation.md] [--keep-output DIR]
+  python3 scripts/update_evaluation.py --from-output TABLE REALISTIC PAPER [--doc ...]
+
+Three runs of `xparam_evaluate` (bench/evaluate/evaluate_pairs.cpp): the table set under every
+configuration (the paper's Table 1 columns and ours), and the realistic set under the default and
+under the paper's map ("Balanced + merging, no relaxation": no relaxation of the patch maps, no map
+optimization). The printed rows are turned into tables, each written between the markers
+<!-- BEGIN generated: NAME --> and <!-- END generated: NAME --> of the document; nothing outside
+the markers changes. The document is written only when every block's markers are there and the
+runs mapped at least one pair; otherwise it is left as it was and the problem is named.
+
+--from-output makes the tables from the saved output of those three runs instead of running them
+(--keep-output DIR saves it: table.txt, realistic.txt, realistic_paper.txt). A full run takes about
+9 minutes on the project's 2-core machine (2026-12-05).
+"""
+
+import argparse
+import datetime
+import os
+import platform
+import re
+import subprocess
+import sys
+
+DEFAULT = "Balanced + merging"
+PAPER_MAP = "Balanced + merging, no relaxation"
+HEADER = re.compile(r"^(?P<name>.+): (?P<anchors>\d+) anchors, \d+ / \d+ vertices, floor [0-9.]+ s")
+BLOCKS = ("stamp", "table1", "table1_folds_truth", "table1_default", "realistic", "hands_feet", "summary")
+
+
+class Pair:
+    """One pair of an evaluation run: its name, its anchors and its row per configuration."""
+
+    def __init__(self, name, anchors):
+        self.name = name
+        self.anchors = anchors
+        self.rows = {}  # configuration -> {column: text}, or a failure message (str)
+
+
+def parse(text):
+    """The pairs of one run of xparam_evaluate, in order, and its summary lines."""
+    pairs, summary, columns, pair = [], [], None, None
+    in_summary = False
+    for line in text.splitlines():
+        header = HEADER.match(line)
+        if header:
+            pair = Pair(header["name"], int(header["anchors"]))
+            pairs.append(pair)
+            continue
+        if line.startswith("Summary over the pairs run"):
+            in_summary = True
+            continue
+        if in_summary:
+            if line.startswith("- "):
+                summary.append(line[2:])
+            continue
+        if not line.startswith("| ") or pair is None:
+            continue
+        cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
+        if cells[0] == "configuration":
+            columns = cells
+        elif len(cells) == 2 and cells[1].startswith("failed"):
+            pair.rows[cells[0]] = cells[1]
+        elif columns and len(cells) == len(columns):
+            pair.rows[cells[0]] = dict(zip(columns, cells))
+    return pairs, summary
+
+
+def configurations_of(pairs):
+    """The configurations run, in the order they were printed."""
+    seen = []
+    for pair in pairs:
+        for name in pair.rows:
+            if name not in seen:
+                seen.append(name)
+    return seen
+
+
+def table(head, rows):
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    lines += ["| " + " | ".join(row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def cell(pair, configuration, render):
+    row = pair.rows.get(configuration)
+    if row is None:
+        return "not run"
+    if isinstance(row, str):
+        return row
+    return render(row)
+
+
+def short(value):
+    """A distortion figure to three decimals, fewer as it grows (E_L2 of a tangled map runs to
+    thousands)."""
+    try:
+        number = float(value)
+    except ValueError:
+        return value
+    if number < 10:
+        return f"{number:.3f}"
+    return f"{number:.1f}" if number < 1000 else f"{number:.0f}"
+
+
+def table1(pairs):
+    configurations = configurations_of(pairs)
+    rows = [[f"{p.name} ({p.anchors})"] +
+            [cell(p, c, lambda r: f"{short(r['E_L2'])} / {short(r['E_ang'])}") for c in configurations]
+            for p in pairs]
+    return table(["pair (anchors)"] + configurations, rows)
+
+
+def table1_folds_truth(pairs):
+    configurations = configurations_of(pairs)
+    rows = [[p.name] + [cell(p, c, lambda r: f"{r['strict']} / {r['gt error % sqrt(A)']}") for c in configurations]
+            for p in pairs]
+    return table(["pair"] + configurations, rows)
+
+
+def table1_default(pairs):
+    head = ["pair", "E_L2", "E_ang", "flipped", "strict", "area ratio", "gt % √A", "swaps", "merges",
+            "optimize s", "optimize map s", "total s", "floor x", "worse hand", "worse foot"]
+    keys = ["E_L2", "E_ang", "flipped", "strict", "area ratio", "gt error % sqrt(A)", "swaps", "merges",
+            "optimize s", "optimize map s", "total s", "floor x", "worse hand gt % sqrt(A)",
+            "worse foot gt % sqrt(A)"]
+    rows = []
+    for p in pairs:
+        row = p.rows.get(DEFAULT)
+        if isinstance(row, dict):
+            rows.append([p.name] + [row[k] for k in keys])
+        else:
+            rows.append([p.name, row or "not run"] + [""] * (len(keys) - 1))
+    return table(head, rows)
+
+
+def compact(row):
+    """E_L2 / flipped / strict / area ratio / ground truth % sqrt(A) / seconds."""
+    return " / ".join([short(row["E_L2"]), row["flipped"], row["strict"], row["area ratio"],
+                       row["gt error % sqrt(A)"], row["total s"]])
+
+
+def realistic(default_pairs, paper_pairs):
+    paper = {p.name: p for p in paper_pairs}
+    rows = []
+    for p in default_pairs:
+        other = paper.get(p.name)
+        rows.append([p.name, cell(p, DEFAULT, compact), cell(p, DEFAULT, lambda r: r["floor x"]),
+                     cell(other, PAPER_MAP, compact) if other else "not run"])
+    return table(["pair [landmarks]", "the default", "floor x", "the paper's map"], rows)
+
+
+def hands_feet(pairs):
+    rows = [[p.name, cell(p, DEFAULT, lambda r: r["worse hand gt % sqrt(A)"]),
+             cell(p, DEFAULT, lambda r: r["worse foot gt % sqrt(A)"])]
+            for p in pairs if isinstance(p.rows.get(DEFAULT), dict) and p.rows[DEFAULT]["worse hand gt % sqrt(A)"] != "-"]
+    return table(["pair [landmarks]", "worse hand, gt % √A", "worse foot, gt % √A"], rows)
+
+
+def summary(runs):
+    parts = []
+    for title, lines_of_run in runs:
+        parts.append(f"{title}:\n\n" + "\n".join(f"- {line}" for line in lines_of_run))
+    return "\n\n".join(parts)
+
+
+def machine():
+    model = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as cpuinfo:
+            for line in cpuinfo:
+                if line.startswith("model name"):
+                    model = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    return f"{model}, {os.cpu_count()} cores"
+
+
+def splice(document, name, body):
+    """`document` with the text between block `name`'s markers replaced by `body`."""
+    begin, end = f"<!-- BEGIN generated: {name} -->", f"<!-- END generated: {name} -->"
+    start = document.find(begin)
+    stop = document.find(end)
+    if start < 0 or stop < start or document.count(begin) != 1 or document.count(end) != 1:
+        raise ValueError(f"block '{name}': the document needs exactly one '{begin}' followed by one '{end}'")
+    return document[:start + len(begin)] + "\n\n" + body + "\n\n" + document[stop:]
+
+
+def run(evaluate, data, arguments):
+    command = [evaluate] + (["--data", data] if data else []) + arguments
+    print("running:", " ".join(f'"{a}"' if " " in a else a for a in command), file=sys.stderr, flush=True)
+    result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    if result.returncode != 0:
+        raise RuntimeError(f"{evaluate} exited with {result.returncode}")
+    return result.stdout
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--evaluate", default=os.path.join(here, "..", "build", "bench", "xparam_evaluate"))
+    parser.add_argument("--data", help="the data folder (xparam_evaluate's default: ../shared/data)")
+    parser.add_argument("--doc", default=os.path.join(here, "..", "docs", "evaluation.md"))
+    parser.add_argument("--from-output", nargs=3, metavar=("TABLE", "REALISTIC", "PAPER"),
+                        help="the saved output of the three runs, instead of running them")
+    parser.add_argument("--keep-output", metavar="DIR", help="save the three runs' output in DIR")
+    parser.add_argument("--date", help="the date stamped on the tables (default: today)")
+    args = parser.parse_args()
+
+    try:
+        with open(args.doc, encoding="utf-8") as f:
+            document = f.read()
+        for name in BLOCKS:  # refused before the runs, not after them
+            splice(document, name, "")
+        if args.from_output:
+            outputs = []
+            for path in args.from_output:
+                with open(path, encoding="utf-8") as f:
+                    outputs.append(f.read())
+        else:
+            if not os.access(args.evaluate, os.X_OK):
+                raise RuntimeError(f"{args.evaluate}: no such program; build it first (scripts/test.sh build)")
+            outputs = [run(args.evaluate, args.data, ["--set", "table"]),
+                       run(args.evaluate, args.data, ["--set", "realistic", "--configuration", DEFAULT]),
+                       run(args.evaluate, args.data, ["--set", "realistic", "--configuration", PAPER_MAP])]
+            if args.keep_output:
+                os.makedirs(args.keep_output, exist_ok=True)
+                for file_name, text in zip(("table.txt", "realistic.txt", "realistic_paper.txt"), outputs):
+                    with open(os.path.join(args.keep_output, file_name), "w", encoding="utf-8") as f:
+                        f.write(text)
+        (table_pairs, table_summary), (default_pairs, default_summary), (paper_pairs, paper_summary) = \
+            [parse(text) for text in outputs]
+        if not table_pairs and not default_pairs:
+            raise RuntimeError("no pair was mapped (is the data folder there? xparam_evaluate --list shows the pairs)")
+        date = args.date or datetime.date.today().isoformat()
+        stamp = (f"Generated by `scripts/update_evaluation.py` on {date} ({machine()}); "
+                 f"{len(table_pairs)} pairs of the table set, {len(default_pairs)} of the realistic set.")
+        blocks = {
+            "stamp": stamp,
+            "table1": table1(table_pairs),
+            "table1_folds_truth": table1_folds_truth(table_pairs),
+            "table1_default": table1_default(table_pairs),
+            "realistic": realistic(default_pairs, paper_pairs),
+            "hands_feet": hands_feet(default_pairs),
+            "summary": summary([("The table set", table_summary), ("The realistic set, the default", default_summary),
+                                ("The realistic set, the paper's map", paper_summary)]),
+        }
+        for name in BLOCKS:
+            document = splice(document, name, blocks[name])
+    except (OSError, ValueError, RuntimeError) as error:
+        print(f"update_evaluation: {error}; {args.doc} is unchanged", file=sys.stderr)
+        return 1
+    # Written beside and renamed over it: a run stopped half-way leaves the old document whole.
+    written = args.doc + ".new"
+    with open(written, "w", encoding="utf-8") as f:
+        f.write(document)
+    os.replace(written, args.doc)
+    print(f"update_evaluation: wrote {len(BLOCKS)} blocks of {args.doc}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
