@@ -2,25 +2,26 @@
 """Rerun the evaluation and replace the generated tables of docs/evaluation.md.
 
 Usage:
-  python3 scripts/update_evaluation.py [--evaluate build/bench/xparam_evaluate] [--data DIR]
-      [--doc docs/evaluation.md] [--keep-output DIR]
-  python3 scripts/update_evaluation.py --from-output TABLE REALISTIC PAPER [--doc ...]
+  python3 scripts/update_evaluation.py [--evaluate build/bench/xparam_evaluate]
+      [--bench build/bench/xparam_bench] [--data DIR] [--doc docs/evaluation.md] [--keep-output DIR]
+  python3 scripts/update_evaluation.py --from-output TABLE REALISTIC PAPER BENCH_JSON [--doc ...]
 
 Three runs of `xparam_evaluate` (bench/evaluate/evaluate_pairs.cpp): the table set under every
 configuration (the paper's Table 1 columns and ours), and the realistic set under the default and
 under the paper's map ("Balanced + merging, no relaxation": no relaxation of the patch maps, no map
-optimization). The printed rows are turned into tables, each written between the markers
+optimization); then every benchmark of `xparam_bench` (bench/), its JSON output. The printed rows
+are turned into tables, each written between the markers
 <!-- BEGIN generated: NAME --> and <!-- END generated: NAME --> of the document; nothing outside
 the markers changes. The document is written only when every block's markers are there and the
 runs mapped at least one pair; otherwise it is left as it was and the problem is named.
 
---from-output makes the tables from the saved output of those three runs instead of running them
-(--keep-output DIR saves it: table.txt, realistic.txt, realistic_paper.txt). A full run takes about
-9 minutes on the project's 2-core machine (2026-12-05).
+--from-output makes the tables from the saved output of those four runs instead of running them
+(--keep-output DIR saves it: table.txt, realistic.txt, realistic_paper.txt, bench.json).
 """
 
 import argparse
 import datetime
+import json
 import os
 import platform
 import re
@@ -30,7 +31,12 @@ import sys
 DEFAULT = "Balanced + merging"
 PAPER_MAP = "Balanced + merging, no relaxation"
 HEADER = re.compile(r"^(?P<name>.+): (?P<anchors>\d+) anchors, \d+ / \d+ vertices, floor [0-9.]+ s")
-BLOCKS = ("stamp", "table1", "table1_folds_truth", "table1_default", "realistic", "hands_feet", "summary")
+BLOCKS = ("stamp", "table1", "table1_folds_truth", "table1_default", "realistic", "hands_feet", "summary",
+          "benchmarks")
+# The keys of a Google Benchmark JSON run that are not the benchmark's own counters.
+BENCHMARK_KEYS = {"name", "family_index", "per_family_instance_index", "run_name", "run_type", "repetitions",
+                  "repetition_index", "threads", "iterations", "real_time", "cpu_time", "time_unit",
+                  "aggregate_name", "aggregate_unit", "error_occurred", "error_message", "label"}
 
 
 class Pair:
@@ -169,6 +175,32 @@ def summary(runs):
     return "\n\n".join(parts)
 
 
+def benchmarks(report):
+    """One row per benchmark of a Google Benchmark JSON report: its wall time and its counters."""
+    rows = []
+    for run in report.get("benchmarks", []):
+        if run.get("error_occurred"):
+            rows.append([f"`{run['name']}`", "failed", run.get("error_message", "")])
+            continue
+        counters = ", ".join(f"{key} {counter(value)}" for key, value in run.items()
+                             if key not in BENCHMARK_KEYS and isinstance(value, (int, float)))
+        rows.append([f"`{run['name']}`", duration(run["real_time"], run["time_unit"]), counters])
+    return table(["benchmark", "wall time", "counters"], rows)
+
+
+def duration(value, unit):
+    """A benchmark's time in the largest unit it fills (3.041 s, not 3041 ms)."""
+    seconds = value * {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}[unit]
+    for scale, name in ((1.0, "s"), (1e-3, "ms"), (1e-6, "µs")):
+        if seconds >= scale:
+            return f"{seconds / scale:.4g} {name}"
+    return f"{seconds / 1e-9:.4g} ns"
+
+
+def counter(value):
+    return str(int(value)) if float(value).is_integer() and abs(value) < 1e12 else f"{value:.4g}"
+
+
 def machine():
     model = platform.processor() or platform.machine()
     try:
@@ -192,12 +224,13 @@ def splice(document, name, body):
     return document[:start + len(begin)] + "\n\n" + body + "\n\n" + document[stop:]
 
 
-def run(evaluate, data, arguments):
-    command = [evaluate] + (["--data", data] if data else []) + arguments
+def run(program, data, arguments):
+    """What `program` prints on standard output, run with `arguments` (and --data DATA)."""
+    command = [program] + (["--data", data] if data else []) + arguments
     print("running:", " ".join(f'"{a}"' if " " in a else a for a in command), file=sys.stderr, flush=True)
     result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     if result.returncode != 0:
-        raise RuntimeError(f"{evaluate} exited with {result.returncode}")
+        raise RuntimeError(f"{program} exited with {result.returncode}")
     return result.stdout
 
 
@@ -207,9 +240,10 @@ def main():
     parser.add_argument("--evaluate", default=os.path.join(here, "..", "build", "bench", "xparam_evaluate"))
     parser.add_argument("--data", help="the data folder (xparam_evaluate's default: ../shared/data)")
     parser.add_argument("--doc", default=os.path.join(here, "..", "docs", "evaluation.md"))
-    parser.add_argument("--from-output", nargs=3, metavar=("TABLE", "REALISTIC", "PAPER"),
-                        help="the saved output of the three runs, instead of running them")
-    parser.add_argument("--keep-output", metavar="DIR", help="save the three runs' output in DIR")
+    parser.add_argument("--bench", default=os.path.join(here, "..", "build", "bench", "xparam_bench"))
+    parser.add_argument("--from-output", nargs=4, metavar=("TABLE", "REALISTIC", "PAPER", "BENCH_JSON"),
+                        help="the saved output of the four runs, instead of running them")
+    parser.add_argument("--keep-output", metavar="DIR", help="save the four runs' output in DIR")
     parser.add_argument("--date", help="the date stamped on the tables (default: today)")
     args = parser.parse_args()
 
@@ -224,20 +258,27 @@ def main():
                 with open(path, encoding="utf-8") as f:
                     outputs.append(f.read())
         else:
-            if not os.access(args.evaluate, os.X_OK):
-                raise RuntimeError(f"{args.evaluate}: no such program; build it first (scripts/test.sh build)")
+            for program in (args.evaluate, args.bench):
+                if not os.access(program, os.X_OK):
+                    raise RuntimeError(f"{program}: no such program; build it first (scripts/test.sh build)")
             outputs = [run(args.evaluate, args.data, ["--set", "table"]),
                        run(args.evaluate, args.data, ["--set", "realistic", "--configuration", DEFAULT]),
-                       run(args.evaluate, args.data, ["--set", "realistic", "--configuration", PAPER_MAP])]
+                       run(args.evaluate, args.data, ["--set", "realistic", "--configuration", PAPER_MAP]),
+                       run(args.bench, None, ["--benchmark_format=json"])]
             if args.keep_output:
                 os.makedirs(args.keep_output, exist_ok=True)
-                for file_name, text in zip(("table.txt", "realistic.txt", "realistic_paper.txt"), outputs):
+                for file_name, text in zip(("table.txt", "realistic.txt", "realistic_paper.txt", "bench.json"),
+                                           outputs):
                     with open(os.path.join(args.keep_output, file_name), "w", encoding="utf-8") as f:
                         f.write(text)
         (table_pairs, table_summary), (default_pairs, default_summary), (paper_pairs, paper_summary) = \
-            [parse(text) for text in outputs]
+            [parse(text) for text in outputs[:3]]
         if not table_pairs and not default_pairs:
             raise RuntimeError("no pair was mapped (is the data folder there? xparam_evaluate --list shows the pairs)")
+        try:
+            bench_report = json.loads(outputs[3])
+        except json.JSONDecodeError as error:
+            raise ValueError(f"the benchmarks' output is not JSON ({error})") from error
         date = args.date or datetime.date.today().isoformat()
         stamp = (f"Generated by `scripts/update_evaluation.py` on {date} ({machine()}); "
                  f"{len(table_pairs)} pairs of the table set, {len(default_pairs)} of the realistic set.")
@@ -250,6 +291,7 @@ def main():
             "hands_feet": hands_feet(default_pairs),
             "summary": summary([("The table set", table_summary), ("The realistic set, the default", default_summary),
                                 ("The realistic set, the paper's map", paper_summary)]),
+            "benchmarks": benchmarks(bench_report),
         }
         for name in BLOCKS:
             document = splice(document, name, blocks[name])

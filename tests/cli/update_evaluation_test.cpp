@@ -15,8 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kBlocks[] = {"stamp",      "table1", "table1_folds_truth", "table1_default", "realistic",
-                               "hands_feet", "summary"};
+const char* const kBlocks[] = {"stamp",      "table1",  "table1_folds_truth", "table1_default", "realistic",
+                               "hands_feet", "summary", "benchmarks"};
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -45,7 +45,7 @@ ProgramRun update(const fs::path& doc, const std::string& table, const std::stri
   const fs::path data = fs::path(XPARAM_SOURCE_DIR) / "tests" / "data" / "evaluation";
   return run("python3 " + quoted(script) + " --doc " + quoted(doc) + " --date 2026-01-02 --from-output " +
                  quoted(data / table) + " " + quoted(data / "realistic.txt") + " " +
-                 quoted(data / "realistic_paper.txt"),
+                 quoted(data / "realistic_paper.txt") + " " + quoted(data / "bench.json"),
              test_name);
 }
 
@@ -96,6 +96,13 @@ TEST(UpdateEvaluation, WritesTheFiguresBetweenTheMarkersAndNothingElse) {
       << after;
   EXPECT_NE(after.find("on 2026-01-02"), std::string::npos);
   EXPECT_NE(after.find("- Balanced + merging: 2 pairs run (1 failed)"), std::string::npos);
+  // Each benchmark's wall time and counters.
+  EXPECT_NE(after.find(
+                "| `BM_HumanPair50k73Landmarks/iterations:1/real_time` | 3.041 s | E_L2 1.023, floor_x 19.4, "
+                "strict_folds 0 |"),
+            std::string::npos)
+      << after;
+  EXPECT_NE(after.find("| `BM_ReadOnePolygon/100000` | 82.1 ms |  |"), std::string::npos) << after;
 }
 
 TEST(UpdateEvaluation, LeavesADocumentWithoutAllMarkersAsItWas) {
@@ -119,9 +126,10 @@ TEST(UpdateEvaluation, LeavesTheDocumentAsItWasWhenNoPairWasMapped) {
   const fs::path empty = dir / "empty.txt";
   write_text(empty, "\nSummary over the pairs run (per configuration):\n");
   const fs::path script = fs::path(XPARAM_SOURCE_DIR) / "scripts" / "update_evaluation.py";
-  const ProgramRun result = run("python3 " + quoted(script) + " --doc " + quoted(doc) + " --from-output " +
-                                    quoted(empty) + " " + quoted(empty) + " " + quoted(empty),
-                                "update_evaluation_empty_run");
+  const ProgramRun result =
+      run("python3 " + quoted(script) + " --doc " + quoted(doc) + " --from-output " + quoted(empty) + " " +
+              quoted(empty) + " " + quoted(empty) + " " + quoted(empty),
+          "update_evaluation_empty_run");
   EXPECT_NE(result.status, 0);
   EXPECT_NE(result.out.find("no pair was mapped"), std::string::npos) << result.out;
   EXPECT_EQ(read_text(doc), before);
