@@ -162,9 +162,13 @@ def realistic(default_pairs, paper_pairs):
 
 
 def hands_feet(pairs):
-    rows = [[p.name, cell(p, DEFAULT, lambda r: r["worse hand gt % sqrt(A)"]),
-             cell(p, DEFAULT, lambda r: r["worse foot gt % sqrt(A)"])]
-            for p in pairs if isinstance(p.rows.get(DEFAULT), dict) and p.rows[DEFAULT]["worse hand gt % sqrt(A)"] != "-"]
+    """The worse hand and foot of each pair whose default map has them (an SMPL template with a truth)."""
+    def measured(pair):
+        row = pair.rows.get(DEFAULT)
+        return isinstance(row, dict) and row["worse hand gt % sqrt(A)"] != "-"
+
+    rows = [[p.name, p.rows[DEFAULT]["worse hand gt % sqrt(A)"], p.rows[DEFAULT]["worse foot gt % sqrt(A)"]]
+            for p in pairs if measured(p)]
     return table(["pair [landmarks]", "worse hand, gt % √A", "worse foot, gt % √A"], rows)
 
 
