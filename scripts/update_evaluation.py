@@ -242,7 +242,8 @@ def main():
     here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--evaluate", default=os.path.join(here, "..", "build", "bench", "xparam_evaluate"))
-    parser.add_argument("--data", help="the data folder (xparam_evaluate's default: ../shared/data)")
+    parser.add_argument("--data", help="xparam_evaluate's data folder (default: ../shared/data beside the "
+                                       "checkout; the benchmarks always read that one)")
     parser.add_argument("--doc", default=os.path.join(here, "..", "docs", "evaluation.md"))
     parser.add_argument("--bench", default=os.path.join(here, "..", "build", "bench", "xparam_bench"))
     parser.add_argument("--from-output", nargs=4, metavar=("TABLE", "REALISTIC", "PAPER", "BENCH_JSON"),
