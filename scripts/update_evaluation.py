@@ -241,11 +241,14 @@ def run(program, data, arguments):
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--evaluate", default=os.path.join(here, "..", "build", "bench", "xparam_evaluate"))
+    parser.add_argument("--evaluate", default=os.path.join(here, "..", "build", "bench", "xparam_evaluate"),
+                        help="the xparam_evaluate program (default: build/bench/xparam_evaluate)")
     parser.add_argument("--data", help="xparam_evaluate's data folder (default: ../shared/data beside the "
                                        "checkout; the benchmarks always read that one)")
-    parser.add_argument("--doc", default=os.path.join(here, "..", "docs", "evaluation.md"))
-    parser.add_argument("--bench", default=os.path.join(here, "..", "build", "bench", "xparam_bench"))
+    parser.add_argument("--doc", default=os.path.join(here, "..", "docs", "evaluation.md"),
+                        help="the document whose generated blocks are replaced (default: docs/evaluation.md)")
+    parser.add_argument("--bench", default=os.path.join(here, "..", "build", "bench", "xparam_bench"),
+                        help="the xparam_bench program (default: build/bench/xparam_bench)")
     parser.add_argument("--from-output", nargs=4, metavar=("TABLE", "REALISTIC", "PAPER", "BENCH_JSON"),
                         help="the saved output of the four runs, instead of running them")
     parser.add_argument("--keep-output", metavar="DIR", help="save the four runs' output in DIR")
