@@ -129,20 +129,23 @@ def table1_folds_truth(pairs):
     return table(["pair"] + configurations, rows)
 
 
+# The columns of the default's row per pair: (the table's heading, the program's column).
+DEFAULT_COLUMNS = [("E_L2", "E_L2"), ("E_ang", "E_ang"), ("flipped", "flipped"), ("strict", "strict"),
+                   ("area ratio", "area ratio"), ("gt % √A", "gt error % sqrt(A)"), ("swaps", "swaps"),
+                   ("merges", "merges"), ("optimize s", "optimize s"), ("optimize map s", "optimize map s"),
+                   ("total s", "total s"), ("floor x", "floor x"), ("worse hand", "worse hand gt % sqrt(A)"),
+                   ("worse foot", "worse foot gt % sqrt(A)")]
+
+
 def table1_default(pairs):
-    head = ["pair", "E_L2", "E_ang", "flipped", "strict", "area ratio", "gt % √A", "swaps", "merges",
-            "optimize s", "optimize map s", "total s", "floor x", "worse hand", "worse foot"]
-    keys = ["E_L2", "E_ang", "flipped", "strict", "area ratio", "gt error % sqrt(A)", "swaps", "merges",
-            "optimize s", "optimize map s", "total s", "floor x", "worse hand gt % sqrt(A)",
-            "worse foot gt % sqrt(A)"]
     rows = []
     for p in pairs:
         row = p.rows.get(DEFAULT)
         if isinstance(row, dict):
-            rows.append([p.name] + [row[k] for k in keys])
+            rows.append([p.name] + [row[key] for _, key in DEFAULT_COLUMNS])
         else:
-            rows.append([p.name, row or "not run"] + [""] * (len(keys) - 1))
-    return table(head, rows)
+            rows.append([p.name, row or "not run"] + [""] * (len(DEFAULT_COLUMNS) - 1))
+    return table(["pair"] + [heading for heading, _ in DEFAULT_COLUMNS], rows)
 
 
 def compact(row):

@@ -18,16 +18,21 @@ struct ProgramRun {
   std::string out;  // stdout and stderr
 };
 
+// The whole file, bytes as they are ("" when it cannot be read).
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 inline ProgramRun run(const std::string& arguments, const std::string& test_name) {
   const auto output = fresh_temp_dir(test_name) / "output.txt";
   const std::string command = arguments + " > " + quoted(output) + " 2>&1";
   const int raw = std::system(command.c_str());
   ProgramRun result;
   result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  std::ifstream in(output);
-  std::ostringstream text;
-  text << in.rdbuf();
-  result.out = text.str();
+  result.out = read_text(output);
   return result;
 }
 

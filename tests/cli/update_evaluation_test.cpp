@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 namespace xparam::test {
@@ -17,13 +17,6 @@ namespace fs = std::filesystem;
 
 const char* const kBlocks[] = {"stamp",      "table1",  "table1_folds_truth", "table1_default", "realistic",
                                "hands_feet", "summary", "benchmarks"};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
@@ -40,13 +33,20 @@ std::string document_with_blocks(const std::string& leave_out_end_of = "") {
   return text;
 }
 
-ProgramRun update(const fs::path& doc, const std::string& table, const std::string& test_name) {
+// The saved output of the script's four runs (tests/data/evaluation).
+std::array<fs::path, 4> saved_output() {
+  return {data_path("evaluation/table.txt"), data_path("evaluation/realistic.txt"),
+          data_path("evaluation/realistic_paper.txt"), data_path("evaluation/bench.json")};
+}
+
+// The script run on `outputs` (the table set's, the realistic set's under the default and under the
+// paper's map, the benchmarks'), writing `doc`.
+ProgramRun update(const fs::path& doc, const std::array<fs::path, 4>& outputs, const std::string& test_name) {
   const fs::path script = fs::path(XPARAM_SOURCE_DIR) / "scripts" / "update_evaluation.py";
-  const fs::path data = fs::path(XPARAM_SOURCE_DIR) / "tests" / "data" / "evaluation";
-  return run("python3 " + quoted(script) + " --doc " + quoted(doc) + " --date 2026-01-02 --from-output " +
-                 quoted(data / table) + " " + quoted(data / "realistic.txt") + " " +
-                 quoted(data / "realistic_paper.txt") + " " + quoted(data / "bench.json"),
-             test_name);
+  std::string arguments =
+      "python3 " + quoted(script) + " --doc " + quoted(doc) + " --date 2026-01-02 --from-output";
+  for (const fs::path& output : outputs) arguments += " " + quoted(output);
+  return run(arguments, test_name);
 }
 
 // The document with the text between each block's markers taken out: what must not change.
@@ -67,7 +67,7 @@ TEST(UpdateEvaluation, WritesTheFiguresBetweenTheMarkersAndNothingElse) {
   const fs::path doc = fresh_temp_dir("update_evaluation_writes") / "evaluation.md";
   const std::string before = document_with_blocks();
   write_text(doc, before);
-  const ProgramRun result = update(doc, "table.txt", "update_evaluation_writes_run");
+  const ProgramRun result = update(doc, saved_output(), "update_evaluation_writes_run");
   ASSERT_EQ(result.status, 0) << result.out;
   const std::string after = read_text(doc);
   EXPECT_EQ(outside_blocks(after), outside_blocks(before));
@@ -110,7 +110,7 @@ TEST(UpdateEvaluation, LeavesADocumentWithoutAllMarkersAsItWas) {
   const fs::path doc = fresh_temp_dir("update_evaluation_markers") / "evaluation.md";
   const std::string before = document_with_blocks("hands_feet");
   write_text(doc, before);
-  const ProgramRun result = update(doc, "table.txt", "update_evaluation_markers_run");
+  const ProgramRun result = update(doc, saved_output(), "update_evaluation_markers_run");
   EXPECT_NE(result.status, 0);
   EXPECT_NE(result.out.find("block 'hands_feet'"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("is unchanged"), std::string::npos) << result.out;
@@ -125,11 +125,7 @@ TEST(UpdateEvaluation, LeavesTheDocumentAsItWasWhenNoPairWasMapped) {
   write_text(doc, before);
   const fs::path empty = dir / "empty.txt";
   write_text(empty, "\nSummary over the pairs run (per configuration):\n");
-  const fs::path script = fs::path(XPARAM_SOURCE_DIR) / "scripts" / "update_evaluation.py";
-  const ProgramRun result =
-      run("python3 " + quoted(script) + " --doc " + quoted(doc) + " --from-output " + quoted(empty) + " " +
-              quoted(empty) + " " + quoted(empty) + " " + quoted(empty),
-          "update_evaluation_empty_run");
+  const ProgramRun result = update(doc, {empty, empty, empty, empty}, "update_evaluation_empty_run");
   EXPECT_NE(result.status, 0);
   EXPECT_NE(result.out.find("no pair was mapped"), std::string::npos) << result.out;
   EXPECT_EQ(read_text(doc), before);
