@@ -2,13 +2,12 @@
 
 #include "core/errors.h"
 #include "param/convex_polygon.h"
+#include "param/fixed_pattern_system.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 
 #include <algorithm>
 #include <cmath>
@@ -232,20 +231,7 @@ class Relaxation {
   // One SLIM target: the minimizer of the reweighted quadratic proxy at `uv`.
   std::vector<Eigen::Vector2d> proxy_minimizer(const std::vector<Eigen::Vector2d>& uv,
                                                const std::vector<Matrix2>& roots) {
-    // The entries come in the same order at every iteration. The first assembles them from
-    // triplets (which sum duplicates in that order); later ones add each into its slot of the same
-    // pattern in the same order, so the matrix is the same bit for bit without sorting again.
-    const bool first = slots_.empty();
-    std::vector<Eigen::Triplet<double>> entries;
-    if (!first) std::fill(system_.valuePtr(), system_.valuePtr() + system_.nonZeros(), 0.0);
-    std::size_t next = 0;
-    const auto add = [&](int row, int col, double value) {
-      if (first) {
-        entries.emplace_back(row, col, value);
-      } else {
-        system_.valuePtr()[slots_[next++]] += value;
-      }
-    };
+    system_.begin();
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(2 * free_count_);
     for (size_t f = 0; f < source_.triangles.size(); ++f) {
       const FaceFrame& frame = frames_[f];
@@ -280,28 +266,15 @@ class Relaxation {
             continue;
           }
           for (int i = 0; i < 2; ++i) {
-            for (int j = 0; j < 2; ++j) add(2 * row + i, 2 * col + j, block(i, j));
+            for (int j = 0; j < 2; ++j) system_.add(2 * row + i, 2 * col + j, block(i, j));
           }
         }
       }
     }
-    if (first) {
-      system_.resize(2 * free_count_, 2 * free_count_);
-      system_.setFromTriplets(entries.begin(), entries.end());
-      slots_.reserve(entries.size());
-      for (const Eigen::Triplet<double>& entry : entries) {
-        const int* rows = system_.innerIndexPtr();
-        const int* column = rows + system_.outerIndexPtr()[entry.col()];
-        const int* column_end = rows + system_.outerIndexPtr()[entry.col() + 1];
-        slots_.push_back(static_cast<int>(std::lower_bound(column, column_end, entry.row()) - rows));
-      }
-      solver_.analyzePattern(system_);  // the ordering, once
-    }
-    solver_.factorize(system_);
     std::vector<Eigen::Vector2d> result = uv;
-    if (solver_.info() != Eigen::Success) return result;
-    const Eigen::VectorXd solution = solver_.solve(rhs);
-    if (solver_.info() != Eigen::Success || !solution.allFinite()) return result;
+    if (!system_.factorize(2 * free_count_)) return result;
+    const Eigen::VectorXd solution = system_.solve(rhs);
+    if (!system_.solved() || !solution.allFinite()) return result;
     for (size_t v = 0; v < uv.size(); ++v) {
       if (free_index_[v] >= 0) result[v] = solution.segment<2>(2 * free_index_[v]);
     }
@@ -395,9 +368,7 @@ class Relaxation {
   std::vector<std::array<int, 3>> target_neighbours_;  // of the target parameter triangles
   double area_ = 0.0;
   std::vector<int> free_index_;  // #V: unknown index of a free vertex, -1 on the boundary
-  Eigen::SparseMatrix<double> system_;  // the SLIM proxy's matrix (its pattern is fixed)
-  std::vector<int> slots_;              // per assembled entry, in order: its index in system_'s values
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;  // of system_
+  FixedPatternSystem system_;    // the SLIM proxy's (its pattern is the same at every iteration)
   // Per target parameter triangle: the image triangle that held its centroid at the last
   // averaged_metrics call (-1: none yet); a cache, hence mutable.
   mutable std::vector<int> holder_;
