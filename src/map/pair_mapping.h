@@ -204,9 +204,6 @@ struct PairMapping {
   /// barycentrics in the fv order of the loaded target mesh).
   std::vector<SurfacePoint> correspondence;
   Eigen::MatrixX3d remesh_vertices;  ///< #V x 3: image of template vertex i
-  /// #V x 3: image of template vertex i through the layout's map, before it was optimized (step
-  /// 8d); empty when it was not. The first round of tips is matched through it too.
-  Eigen::MatrixX3d layout_remesh_vertices;
   std::vector<int> face_patch;       ///< #template input faces: layout patch holding most of the face's area
   DistortionResult distortion;       ///< per face and global L2-stretch and angle distortion (eq. 3, 5, 6)
   RemeshQualityResult quality;       ///< flipped faces and area ratio of the remesh on the target

@@ -77,10 +77,6 @@ bool better_with_tips(const PairMapping& other, const PairMapping& current) {
          keeps_faces_and_area(other, current);
 }
 
-// How much lower the E_L2 of the first round made through the layout's map must be to replace
-// the round made through the optimized map (with_extremity_anchors).
-constexpr double kClearlyLower = 0.995;
-
 // The settings a map through `current`'s anchors plus `tips` is made with: the tips of this
 // round and of earlier ones held within kTipSlack of the reach.
 PairSettings tip_trial_settings(const PairInputs& in, const AnchoredMap& current,
@@ -243,67 +239,41 @@ bool same_tips(const std::vector<ExtremityAnchor>& a, const std::vector<Extremit
   return pairs(a) == pairs(b);
 }
 
-// What a round of tips on `current` starts from, the same for each of its tries: the anchors in
-// the template's order on both meshes, the root, and each mesh's extremities.
-struct RoundStart {
-  PlacedAnchors target_in_source_order;
-  std::vector<int> source_anchors, target_anchors;  // input vertex of each anchor
-  int root = 0;                                     // the template anchor nearest the anchors' centroid
-  Extremities on_source_ends, on_target_ends;
-};
-
-std::optional<RoundStart> round_start(const PairInputs& in, const AnchoredMap& current) {
+// One round of tips on `current` (with_extremity_anchors), with the small toes' rows among its
+// tips when `rows`; `found_rows` tells whether there were any.
+std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredMap& current,
+                                           PairSeconds& seconds, bool rows, bool& found_rows) {
+  found_rows = false;
   const PlacedAnchors& on_source = current.map.anchors[0];
   const PlacedAnchors& on_target = current.map.anchors[1];
   if (on_source.anchors.size() != on_target.anchors.size() || on_source.anchors.empty()) return std::nullopt;
-  RoundStart start;
   // The root: the template anchor nearest the anchors' centroid, and its namesake on the target.
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const PlacedAnchor& anchor : on_source.anchors) centroid += position(in.source, anchor.input_point);
   centroid /= static_cast<double>(on_source.anchors.size());
+  int root = 0;
   for (int k = 1; k < static_cast<int>(on_source.anchors.size()); ++k) {
     if ((position(in.source, on_source.anchors[k].input_point) - centroid).norm() <
-        (position(in.source, on_source.anchors[start.root].input_point) - centroid).norm())
-      start.root = k;
+        (position(in.source, on_source.anchors[root].input_point) - centroid).norm())
+      root = k;
   }
+  PlacedAnchors target_in_source_order;
   for (const PlacedAnchor& anchor : on_source.anchors) {
     const auto same = std::find_if(on_target.anchors.begin(), on_target.anchors.end(),
                                    [&](const PlacedAnchor& other) { return other.name == anchor.name; });
     if (same == on_target.anchors.end()) return std::nullopt;
-    start.target_in_source_order.anchors.push_back(*same);
+    target_in_source_order.anchors.push_back(*same);
   }
-  start.source_anchors = input_vertices(in.source, on_source);
-  start.target_anchors = input_vertices(in.target, start.target_in_source_order);
+  const std::vector<int> source_anchors = input_vertices(in.source, on_source);
+  const std::vector<int> target_anchors = input_vertices(in.target, target_in_source_order);
   const auto reach = [&](const Mesh& mesh) { return in.settings.tip_reach * std::sqrt(surface_area(mesh)); };
-  start.on_source_ends =
-      extremities(in.source, start.source_anchors[start.root], start.source_anchors, reach(in.source));
-  start.on_target_ends =
-      extremities(in.target, start.target_anchors[start.root], start.target_anchors, reach(in.target));
-  return start;
-}
-
-// One round of tips on `current` (with_extremity_anchors), with the small toes' rows among its
-// tips when `rows`; `found_rows` tells whether there were any. The tips are matched through
-// `current`'s map, or with `through_layout` through its layout's map before it was optimized, and
-// then only where that pairs other tips (nothing otherwise).
-std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredMap& current,
-                                           const RoundStart& start, PairSeconds& seconds, bool rows,
-                                           bool& found_rows, bool through_layout) {
-  found_rows = false;
-  const PlacedAnchors& on_source = current.map.anchors[0];
-  const std::vector<int>& source_anchors = start.source_anchors;
-  const std::vector<int>& target_anchors = start.target_anchors;
-  const int root = start.root;
-  const Extremities& on_source_ends = start.on_source_ends;
-  const Extremities& on_target_ends = start.on_target_ends;
-  const auto reach = [&](const Mesh& mesh) { return in.settings.tip_reach * std::sqrt(surface_area(mesh)); };
-  const auto rows_of = [](const Eigen::MatrixX3d& matrix) {
-    std::vector<Eigen::Vector3d> points(matrix.rows());
-    for (int v = 0; v < static_cast<int>(points.size()); ++v) points[v] = matrix.row(v).transpose();
-    return points;
-  };
-  const std::vector<Eigen::Vector3d> images =
-      rows_of(through_layout ? current.map.layout_remesh_vertices : current.map.remesh_vertices);
+  const Extremities on_source_ends =
+      extremities(in.source, source_anchors[root], source_anchors, reach(in.source));
+  const Extremities on_target_ends =
+      extremities(in.target, target_anchors[root], target_anchors, reach(in.target));
+  std::vector<Eigen::Vector3d> images(current.map.remesh_vertices.rows());
+  for (int v = 0; v < static_cast<int>(images.size()); ++v)
+    images[v] = current.map.remesh_vertices.row(v).transpose();
   const std::vector<std::array<int, 3>> faces = triangles_of(in.source);
   const FirstMap first{images, faces};
   // A tip the map was pulled onto is no anchor of its layout, so it is found again: it is held already.
@@ -321,15 +291,6 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
       match_extremities(in.source, on_source_ends.tips, in.target, on_target_ends.tips, first,
                         anchor_names(on_source), in.settings.max_tip_mismatch);
   std::erase_if(through_map, pulled_already);
-  if (through_layout) {
-    // Only where it pairs other tips than the optimized map does: else it is the same round.
-    const std::vector<Eigen::Vector3d> optimized_images = rows_of(current.map.remesh_vertices);
-    const FirstMap optimized{optimized_images, faces};
-    const std::vector<ExtremityAnchor> through_optimized =
-        match_extremities(in.source, on_source_ends.tips, in.target, on_target_ends.tips, optimized,
-                          anchor_names(on_source), in.settings.max_tip_mismatch);
-    if (same_tips(through_map, through_optimized)) return std::nullopt;
-  }
   const TipsAndAnchors source_side{in.source, on_source_ends, source_anchors, in.settings.tip_reach};
   const TipsAndAnchors target_side{in.target, on_target_ends, target_anchors, in.settings.tip_reach};
   const auto short_tips = [&](const Mesh& mesh, const std::vector<int>& anchors) {
@@ -456,36 +417,12 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   // the rest were wrong: the round is then made again as without rows (FAUST 000/020 [73]: the map
   // through 16 tips, 4 of them toes, lost; the round without them wins, its worse hand 0.200% of
   // sqrt(area) against 0.753% for the map before the round).
-  const std::optional<RoundStart> start = round_start(in, current);
-  if (!start) return std::nullopt;
-  const auto round = [&](bool through_layout) {
-    bool found_rows = false;
-    if (in.settings.tip_rows) {
-      std::optional<AnchoredMap> with_rows =
-          extremity_round(in, current, *start, seconds, true, found_rows, through_layout);
-      if (with_rows || !found_rows) return with_rows;
-    }
-    return extremity_round(in, current, *start, seconds, false, found_rows, through_layout);
-  };
-  std::optional<AnchoredMap> result = round(false);
-  // The first round again with its tips matched through the layout's map, before the map was
-  // optimized (PairMapping::layout_remesh_vertices), where they pair otherwise. The layout's map
-  // squeezes a finger without a landmark but leaves it in its place; optimizing the map can slide
-  // the squeezed fingers of a hand one over, and tips matched through it then hold them there
-  // (the bundled man/woman pair, one SMPL connectivity: the template's middle and ring fingertips on
-  // the target's ring and little fingers, the target's middle finger under a spike of long faces,
-  // E_L2 1.012). Through the layout's map every finger lands on its own (E_L2 1.004, the error
-  // against the vertex-to-vertex truth 6.0 -> 3.7 mm). Its map replaces the other round's only
-  // when clearly better: on SHREC'19 18 [29 anthropometric] it was 0.06% lower in E_L2 with a
-  // worse foot.
-  if (current.map.extremity_anchors.empty() && current.map.layout_remesh_vertices.rows() > 0) {
-    std::optional<AnchoredMap> through_layout = round(true);
-    if (through_layout && (!result || (better_with_tips(through_layout->map, result->map) &&
-                                       through_layout->map.distortion.all.e_l2 <
-                                           kClearlyLower * result->map.distortion.all.e_l2)))
-      result = std::move(through_layout);
+  bool found_rows = false;
+  if (in.settings.tip_rows) {
+    std::optional<AnchoredMap> with_rows = extremity_round(in, current, seconds, true, found_rows);
+    if (with_rows || !found_rows) return with_rows;
   }
-  return result;
+  return extremity_round(in, current, seconds, false, found_rows);
 }
 
 }  // namespace xparam::pair_maps

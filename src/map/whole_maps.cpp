@@ -273,9 +273,6 @@ void fill_map(PairMapping& result, const MapAttempt& attempt, const Mesh& source
     result.remesh_vertices.row(v) = image_positions[v].transpose();
     result.max_clamp_distance = std::max(result.max_clamp_distance, images[v].clamp_distance);
   }
-  result.layout_remesh_vertices.resize(attempt.optimized ? n_vertices : 0, 3);
-  for (int v = 0; v < result.layout_remesh_vertices.rows(); ++v)
-    result.layout_remesh_vertices.row(v) = images[v].position.transpose();
   result.face_patch = input_face_patches(layout.sides[0].mesh, static_cast<int>(source.n_faces()));
   result.curves.clear();
   if (attempt.optimized) {
