@@ -89,7 +89,7 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
   command.add_flag(
       "--retry-doubtful-tips,!--no-retry-doubtful-tips", settings.retry_doubtful_tips,
       "When a map through tips wins and the tip the first map carried farthest from its partner missed by "
-      "more than twice the tip reach, map once more without it (the rest matched again) and keep the "
+      "more than 1.5 times the tip reach, map once more without it (the rest matched again) and keep the "
       "better map: where the first map squeezed a hand, a fingertip can be paired with another finger's "
       "(default on; one more whole map on such pairs)");
   command

@@ -85,7 +85,7 @@ struct PairSettings {
   /// the pulled map alone.
   int whole_map_up_to = 20000;
   /// When a map through tips wins and the tip that the map it was matched through carried farthest
-  /// from its partner missed by more than twice tip_reach (on either mesh), map once more without
+  /// from its partner missed by more than 1.5 tip_reach (on either mesh), map once more without
   /// that tip (the others matched again without it) and keep the better map: a hand the first map
   /// squeezed can pair a fingertip with another finger's. Likewise when a tip of the winner was
   /// matched by its landmark's cell and the target's next tip there lies nearly as far from the
@@ -237,7 +237,7 @@ struct PairMapping {
   /// (PairSettings::pull_carried_tips) rather than mapped through: those are not among `anchors`.
   int pulled_tips = 0;
   /// Tips a round matched and the kept map was made without (PairSettings::retry_doubtful_tips):
-  /// one the map before carried farthest from its partner, by more than twice tip_reach, the map
+  /// one the map before carried farthest from its partner, by more than 1.5 tip_reach, the map
   /// without it winning; or a match by cell whose rival won (ExtremityAnchor::rival_target). Not
   /// among `anchors`.
   std::vector<ExtremityAnchor> doubtful_tips;
