@@ -12,6 +12,9 @@ namespace {
 // Faces per leaf: small leaves prune well; the exact triangle test is cheap.
 constexpr int kLeafSize = 4;
 
+// The median split halves each node: a tree over 2^31 faces is 30 levels deep.
+constexpr int kMaxDepth = 40;
+
 // The parameter t in [0, 1] of segment [a, b]'s point a + t (b - a) nearest to p (0 for a point).
 double segment_parameter(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
@@ -124,10 +127,31 @@ void ClosestPointIndex::build_tree() {
   faces_.resize(triangles_.size());
   for (int f = 0; f < n_faces(); ++f) faces_[f] = f;
   nodes_.reserve(2 * triangles_.size() / kLeafSize + 1);
-  build(0, n_faces(), centroids);
+  build(0, n_faces(), 1, centroids);
+  put_triangles_in_slot_order();
 }
 
-int ClosestPointIndex::build(int begin, int end, const std::vector<Eigen::Vector3d>& centroids) {
+// In place, cycle by cycle: a copy of the corners would cost as many fresh pages again, which
+// on the benchmark machine's VM took longer than the tree.
+void ClosestPointIndex::put_triangles_in_slot_order() {
+  std::vector<bool> placed(triangles_.size(), false);
+  for (int start = 0; start < n_faces(); ++start) {
+    if (placed[start]) continue;
+    // Slot s takes face faces_[s]'s corners: follow s -> faces_[s] until the cycle closes.
+    const std::array<Eigen::Vector3d, 3> first = triangles_[start];
+    int slot = start;
+    while (faces_[slot] != start) {
+      triangles_[slot] = triangles_[faces_[slot]];
+      placed[slot] = true;
+      slot = faces_[slot];
+    }
+    triangles_[slot] = first;
+    placed[slot] = true;
+  }
+}
+
+int ClosestPointIndex::build(int begin, int end, int depth, const std::vector<Eigen::Vector3d>& centroids) {
+  XP_ASSERT_MSG(depth < kMaxDepth, "closest-point tree deeper than " << kMaxDepth);
   const int index = static_cast<int>(nodes_.size());
   nodes_.push_back({});
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
@@ -135,7 +159,8 @@ int ClosestPointIndex::build(int begin, int end, const std::vector<Eigen::Vector
   Eigen::Vector3d centroid_lo = lo;
   Eigen::Vector3d centroid_hi = hi;
   for (int slot = begin; slot < end; ++slot) {
-    for (const Eigen::Vector3d& corner : triangles_[faces_[slot]]) {
+    for (const Eigen::Vector3d& corner :
+         triangles_[faces_[slot]]) {  // face order until the end of build_tree
       lo = lo.cwiseMin(corner);
       hi = hi.cwiseMax(corner);
     }
@@ -154,8 +179,8 @@ int ClosestPointIndex::build(int begin, int end, const std::vector<Eigen::Vector
                        return centroids[f][axis] < centroids[g][axis] ||
                               (centroids[f][axis] == centroids[g][axis] && f < g);
                      });
-    node.left = build(begin, middle, centroids);
-    node.right = build(middle, end, centroids);
+    node.left = build(begin, middle, depth + 1, centroids);
+    node.right = build(middle, end, depth + 1, centroids);
   }
   nodes_[index] = node;
   return index;
@@ -165,16 +190,19 @@ ClosestPoint ClosestPointIndex::closest(const Eigen::Vector3d& p) const {
   XP_ASSERT_MSG(p.allFinite(), "closest-point query at (" << p.transpose() << ")");
   ClosestPoint best;
   double best_distance2 = std::numeric_limits<double>::infinity();
-  std::vector<int> stack{0};
-  while (!stack.empty()) {
-    const Node& node = nodes_[stack.back()];
-    stack.pop_back();
+  // Each visit pops one node and pushes at most two: the stack never holds more than the
+  // tree's depth plus one (build asserts it below kMaxDepth).
+  std::array<int, kMaxDepth + 1> stack;
+  int stacked = 0;
+  stack[stacked++] = 0;
+  while (stacked > 0) {
+    const Node& node = nodes_[stack[--stacked]];
     // Strict: a box exactly as far as the best may still hold a lower-indexed face at that distance.
     if (box_distance2(p, node.lo, node.hi) > best_distance2) continue;
     if (node.left < 0) {
       for (int slot = node.begin; slot < node.end; ++slot) {
         const int f = faces_[slot];
-        const auto& t = triangles_[f];
+        const auto& t = triangles_[slot];
         const TrianglePoint candidate = closest_point_on_triangle(p, t[0], t[1], t[2]);
         const double distance2 = (candidate.point - p).squaredNorm();
         if (distance2 < best_distance2 || (distance2 == best_distance2 && f < best.location.face)) {
@@ -189,8 +217,8 @@ ClosestPoint ClosestPointIndex::closest(const Eigen::Vector3d& p) const {
     const Node& left = nodes_[node.left];
     const Node& right = nodes_[node.right];
     const bool left_nearer = box_distance2(p, left.lo, left.hi) <= box_distance2(p, right.lo, right.hi);
-    stack.push_back(left_nearer ? node.right : node.left);
-    stack.push_back(left_nearer ? node.left : node.right);
+    stack[stacked++] = left_nearer ? node.right : node.left;
+    stack[stacked++] = left_nearer ? node.left : node.right;
   }
   best.distance = std::sqrt(best_distance2);
   return best;

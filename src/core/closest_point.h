@@ -65,10 +65,14 @@ class ClosestPointIndex {
     int right = -1;
   };
 
-  int build(int begin, int end, const std::vector<Eigen::Vector3d>& centroids);
-  void build_tree();  // over triangles_
+  // The node over slots [begin, end) of faces_ at `depth` (the root's is 1); its children after it.
+  int build(int begin, int end, int depth, const std::vector<Eigen::Vector3d>& centroids);
+  void build_tree();  // over triangles_ in face order; leaves them in slot order
+  void put_triangles_in_slot_order();
 
-  std::vector<std::array<Eigen::Vector3d, 3>> triangles_;  ///< corners per face, fv_range order
+  /// Corners in fv_range order: of face f while the tree is built, then of face faces_[slot] at
+  /// triangles_[slot], so a leaf reads its faces' corners from consecutive memory.
+  std::vector<std::array<Eigen::Vector3d, 3>> triangles_;
   std::vector<int> faces_;                                 ///< face indices, grouped by leaf
   std::vector<Node> nodes_;                                ///< nodes_[0] is the root
 };

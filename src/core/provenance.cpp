@@ -3,15 +3,21 @@
 #include "core/errors.h"
 
 #include <algorithm>
+#include <string>
 
 namespace xparam {
 namespace {
 
-constexpr const char* kInputFaceProperty = "xparam:input_face";
+// A std::string once: OpenMesh looks properties up by std::string, and a name of this length
+// would be allocated at every lookup (millions per pair: every point mapped back to the input).
+const std::string& input_face_property() {
+  static const std::string name = "xparam:input_face";
+  return name;
+}
 
 OpenMesh::FPropHandleT<int> input_face_handle(const Mesh& mesh) {
   OpenMesh::FPropHandleT<int> handle;
-  if (!mesh.get_property_handle(handle, kInputFaceProperty)) {
+  if (!mesh.get_property_handle(handle, input_face_property())) {
     throw InternalError("mesh has no provenance: init_provenance was not called");
   }
   return handle;
@@ -21,15 +27,15 @@ OpenMesh::FPropHandleT<int> input_face_handle(const Mesh& mesh) {
 
 void init_provenance(Mesh& mesh) {
   OpenMesh::FPropHandleT<int> handle;
-  if (!mesh.get_property_handle(handle, kInputFaceProperty)) {
-    mesh.add_property(handle, kInputFaceProperty);
+  if (!mesh.get_property_handle(handle, input_face_property())) {
+    mesh.add_property(handle, input_face_property());
   }
   for (FaceHandle f : mesh.faces()) mesh.property(handle, f) = f.idx();
 }
 
 bool has_provenance(const Mesh& mesh) {
   OpenMesh::FPropHandleT<int> handle;
-  return mesh.get_property_handle(handle, kInputFaceProperty);
+  return mesh.get_property_handle(handle, input_face_property());
 }
 
 int input_face(const Mesh& mesh, FaceHandle f) { return mesh.property(input_face_handle(mesh), f); }

@@ -409,9 +409,13 @@ int MapOptimizer::count_folded() const {
 
 std::vector<FaceReferences> MapOptimizer::ring_references(int v) const {
   std::vector<FaceReferences> references;
-  references.reserve(incidences_[v].size());
-  for (const Incidence& in : incidences_[v]) references.push_back(cached(in.face).references);
+  ring_references(v, references);
   return references;
+}
+
+void MapOptimizer::ring_references(int v, std::vector<FaceReferences>& references) const {
+  references.clear();
+  for (const Incidence& in : incidences_[v]) references.push_back(cached(in.face).references);
 }
 
 MapOptimizer::FaceValue MapOptimizer::ring_value(int v, const std::vector<FaceReferences>& references,
@@ -481,7 +485,12 @@ bool MapOptimizer::move_vertex(int v) {
   if (ring.empty()) return false;
   const SurfacePoint& here = locations_[v];
   const Eigen::Vector3d x = positions_[v];
-  const std::vector<FaceReferences> references = ring_references(v);
+  // Buffers reused by each thread's calls: a pair makes millions of moves, each over a ring of a
+  // few faces, and allocating them each time cost a few percent of the whole pair.
+  thread_local std::vector<FaceReferences> references;
+  thread_local std::vector<FaceReferences> moved_references;
+  thread_local std::vector<FaceValue> distortions;
+  ring_references(v, references);
   const FaceValue ring_before = ring_value_now(v);
   const double before = ring_before.energy;
   if (!std::isfinite(before)) return false;
@@ -535,8 +544,7 @@ bool MapOptimizer::move_vertex(int v) {
   if (!(slope < 0.0)) return false;
 
   const Eigen::Vector3d step = direction.x() * tangent.u + direction.y() * tangent.v;
-  std::vector<FaceReferences> moved_references(ring.size());
-  std::vector<FaceValue> distortions;
+  moved_references.resize(ring.size());
   // Over-relaxed first, then the whole step, then halved (MapOptimizationSettings::over_relaxation).
   const auto next_fraction = [](double fraction) { return fraction > 1.0 ? 1.0 : 0.5 * fraction; };
   double fraction = settings_.over_relaxation;

@@ -181,6 +181,7 @@ class MapOptimizer {
 
   // The references of v's faces (incidences_[v] order) at the current images.
   std::vector<FaceReferences> ring_references(int v) const;
+  void ring_references(int v, std::vector<FaceReferences>& references) const;  // into `references`
 
   // d(ring energy)/d(v's image) in 3-D, the reference normals held; folded faces contribute
   // nothing (their energy is constant).
