@@ -58,10 +58,13 @@ TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle
     scratch.distance.resize(n);
     scratch.parent.resize(n);
     scratch.stamp.resize(n, 0);
+    scratch.passable_stamp.resize(n, 0);
+    scratch.passable_answer.resize(n);
   }
   // A stamp per search marks the vertices it reached, so buffers need no clearing.
   if (scratch.current == std::numeric_limits<unsigned>::max()) {
     std::fill(scratch.stamp.begin(), scratch.stamp.end(), 0);
+    std::fill(scratch.passable_stamp.begin(), scratch.passable_stamp.end(), 0);
     scratch.current = 0;
   }
   const unsigned visit = ++scratch.current;
@@ -85,7 +88,16 @@ TracedPath trace_path(const Mesh& mesh, const VertexLabels& labels, VertexHandle
     queue.emplace(d + (target - position(mesh, VertexHandle(v))).norm(), v);
   };
   const Eigen::Vector3d source = position(mesh, from);
-  const auto may_pass = [&](VertexHandle v) { return !labels.blocked(v) && (!passable || passable(v.idx())); };
+  const auto is_passable = [&](int v) {
+    if (scratch.passable_stamp[v] != visit) {
+      scratch.passable_stamp[v] = visit;
+      scratch.passable_answer[v] = passable(v);
+    }
+    return scratch.passable_answer[v] != 0;
+  };
+  const auto may_pass = [&](VertexHandle v) {
+    return !labels.blocked(v) && (!passable || is_passable(v.idx()));
+  };
   for (const VertexHandle v : first) {
     if (may_pass(v)) reach(v.idx(), (position(mesh, v) - source).norm(), -1);
   }

@@ -46,6 +46,10 @@ struct TraceScratch {
   std::vector<double> distance;
   std::vector<int> parent;
   std::vector<unsigned> stamp;
+  /// The `passable` answer for a vertex, valid where passable_stamp equals this search's stamp:
+  /// a vertex is asked once per search instead of once per neighbour settled.
+  std::vector<unsigned> passable_stamp;
+  std::vector<char> passable_answer;
   unsigned current = 0;
 };
 

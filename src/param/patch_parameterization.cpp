@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <exception>
 #include <optional>
 #include <sstream>
@@ -44,43 +43,51 @@ void check_disk(const DiskPatch& patch) {
     if (!used[v]) fail(patch, "vertex " + std::to_string(v) + " is in no triangle");
   }
 
-  // The directed edges, sorted (a sorted vector, not a map: this check runs on every patch).
-  // Of the edges used twice in one direction, the one whose second use comes first in triangle
-  // order is named, so messages name the same edge every run.
-  const auto key = [](int a, int b) {
-    return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
-  };
-  std::vector<std::pair<std::uint64_t, std::size_t>> uses;  // (edge, 3 * triangle + corner)
-  uses.reserve(3 * patch.triangles.size());
+  // The directed edges leaving each vertex, in triangle order (a few per vertex, so lists
+  // searched linearly: this check runs on every patch, and sorting all edges cost more). Of the
+  // edges used twice in one direction, the one whose second use comes first in triangle order is
+  // named, so messages name the same edge every run.
+  std::vector<int> first_out(n_vertices + 1, 0);  // edges leaving v: out[first_out[v] .. first_out[v + 1])
+  for (const auto& t : patch.triangles) {
+    for (int c = 0; c < 3; ++c) ++first_out[t[c] + 1];
+  }
+  for (int v = 0; v < n_vertices; ++v) first_out[v + 1] += first_out[v];
+  std::vector<std::pair<int, std::size_t>> out(first_out.back());  // (head, 3 * triangle + corner)
+  std::vector<int> filled(first_out.begin(), first_out.end() - 1);
   for (std::size_t f = 0; f < patch.triangles.size(); ++f) {
     const auto& t = patch.triangles[f];
-    for (int c = 0; c < 3; ++c) uses.emplace_back(key(t[c], t[(c + 1) % 3]), 3 * f + c);
+    for (int c = 0; c < 3; ++c) out[filled[t[c]]++] = {t[(c + 1) % 3], 3 * f + c};
   }
-  std::sort(uses.begin(), uses.end());
-  std::size_t repeated = uses.size();
-  for (std::size_t k = 1; k < uses.size(); ++k) {
-    if (uses[k].first == uses[k - 1].first) repeated = std::min(repeated, uses[k].second);
+  const auto has = [&](int a, int b) {
+    for (int k = first_out[a]; k < first_out[a + 1]; ++k) {
+      if (out[k].first == b) return true;
+    }
+    return false;
+  };
+  std::size_t repeated = out.size();
+  for (int a = 0; a < n_vertices; ++a) {
+    for (int k = first_out[a]; k < first_out[a + 1]; ++k) {
+      for (int j = first_out[a]; j < k; ++j) {
+        if (out[j].first == out[k].first) repeated = std::min(repeated, out[k].second);
+      }
+    }
   }
-  if (repeated < uses.size()) {
+  if (repeated < out.size()) {
     const auto& t = patch.triangles[repeated / 3];
     const int c = static_cast<int>(repeated % 3);
     fail(patch, "edge (" + std::to_string(t[c]) + ", " + std::to_string(t[(c + 1) % 3]) +
                     ") is used twice in the same direction (non-manifold or inconsistent orientation)");
   }
-  std::vector<std::uint64_t> directed(uses.size());
-  for (std::size_t k = 0; k < uses.size(); ++k) directed[k] = uses[k].first;
-  const auto has = [&](int a, int b) {
-    return std::binary_search(directed.begin(), directed.end(), key(a, b));
-  };
 
   int boundary_edges = 0;
   int undirected_edges = 0;
-  for (const std::uint64_t edge : directed) {
-    const int a = static_cast<int>(edge >> 32);
-    const int b = static_cast<int>(edge & 0xffffffffu);
-    const bool twin = has(b, a);
-    boundary_edges += !twin;
-    undirected_edges += twin ? (a < b) : 1;
+  for (int a = 0; a < n_vertices; ++a) {
+    for (int k = first_out[a]; k < first_out[a + 1]; ++k) {
+      const int b = out[k].first;
+      const bool twin = has(b, a);
+      boundary_edges += !twin;
+      undirected_edges += twin ? (a < b) : 1;
+    }
   }
   const std::vector<int>& loop = patch.boundary_loop;
   const int m = static_cast<int>(loop.size());
