@@ -31,6 +31,12 @@ struct Score {
   double worst = -std::numeric_limits<double>::infinity();  // smallest face quality
 };
 
+// A Score's figures without its list of faces.
+struct FlipCount {
+  std::size_t flipped = 0;
+  double worst = -std::numeric_limits<double>::infinity();
+};
+
 // A ring move's cost over some remesh faces, compared lexicographically: flipped faces, then
 // how far they fold, then slack (faces barely positive, and how far the ring vertices slide).
 struct RingCost {
@@ -163,6 +169,18 @@ class Untangler {
     return rho > 0.0 ? std::min(rho, 1.0 / rho) : 0.0;
   }
 
+  // score's figures without the list: how many of `faces` are flipped, and the worst quality.
+  FlipCount count_flips(const std::vector<int>& faces, const Replacements& replaced) const {
+    FlipCount count;
+    count.worst = std::numeric_limits<double>::infinity();
+    for (int f : faces) {
+      const double q = quality(f, replaced);
+      count.flipped += q < 0.0;
+      count.worst = std::min(count.worst, q);
+    }
+    return count;
+  }
+
   Score score(const std::vector<int>& faces, const Replacements& replaced) const {
     Score s;
     s.worst = std::numeric_limits<double>::infinity();
@@ -217,41 +235,48 @@ class Untangler {
     const Score before = score(check, Replacements{});
 
     const std::vector<Eigen::Vector2d> targets = candidates(*star);
-    struct Trial {
-      std::vector<SurfacePoint> points;
-      std::vector<MappedPoint> images;
-      Score score;
+    // Each trial's points and images in one block of `carried` slots, and only its count of
+    // flips and worst face: this runs for every candidate of every star tried, and a vector per
+    // trial was most of the untangling's allocations. The winner's flipped faces are listed again.
+    const std::size_t carried = affected.size();
+    std::vector<SurfacePoint> trial_points(targets.size() * carried);
+    std::vector<MappedPoint> trial_images(targets.size() * carried);
+    std::vector<FlipCount> trial_scores(targets.size());
+    const auto replacements = [&](std::size_t i, Replacements& replaced) {
+      for (std::size_t a = 0; a < carried; ++a) replaced[a] = {affected[a], &trial_images[i * carried + a]};
     };
-    std::vector<Trial> trials(targets.size());
     tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(targets.size())),
                       [&](const tbb::blocked_range<int>& range) {
                         StarMove move = *star;  // one copy per task
-                        Replacements replaced(affected.size());
+                        Replacements replaced(carried);
                         for (int i = range.begin(); i != range.end(); ++i) {
                           move.to = targets[i];
-                          Trial& trial = trials[i];
-                          trial.points.reserve(affected.size());
-                          trial.images.reserve(affected.size());
-                          for (int u : affected) {
-                            trial.points.push_back(apply_star(move, points_[u]));
-                            trial.images.push_back(gamma_(trial.points.back()));
+                          for (std::size_t a = 0; a < carried; ++a) {
+                            SurfacePoint& point = trial_points[i * carried + a];
+                            point = apply_star(move, points_[affected[a]]);
+                            trial_images[i * carried + a] = gamma_(point);
                           }
-                          for (std::size_t a = 0; a < affected.size(); ++a)
-                            replaced[a] = {affected[a], &trial.images[a]};
-                          trial.score = score(check, replaced);
+                          replacements(i, replaced);
+                          trial_scores[i] = count_flips(check, replaced);
                         }
                       });
 
     // Fewest flips, then the best worst face.
     int best = -1;
-    for (int i = 0; i < static_cast<int>(trials.size()); ++i) {
-      const Score& s = trials[i].score;
-      if (best < 0 || s.flipped.size() < trials[best].score.flipped.size() ||
-          (s.flipped.size() == trials[best].score.flipped.size() && s.worst > trials[best].score.worst)) {
+    for (int i = 0; i < static_cast<int>(trial_scores.size()); ++i) {
+      const FlipCount& s = trial_scores[i];
+      if (best < 0 || s.flipped < trial_scores[best].flipped ||
+          (s.flipped == trial_scores[best].flipped && s.worst > trial_scores[best].worst)) {
         best = i;
       }
     }
-    if (best < 0 || !improves(before, trials[best].score)) {
+    Score best_score;
+    if (best >= 0) {
+      Replacements replaced(carried);
+      replacements(best, replaced);
+      best_score = score(check, replaced);
+    }
+    if (best < 0 || !improves(before, best_score)) {
       std::vector<int> read;  // the corners of the faces scored: what the trials read
       for (int f : check) read.insert(read.end(), faces_[f].begin(), faces_[f].end());
       std::sort(read.begin(), read.end());
@@ -261,7 +286,10 @@ class Untangler {
     }
 
     star->to = targets[best];
-    commit(std::move(*star), affected, trials[best].points, trials[best].images, check, trials[best].score);
+    const auto slots = [&](const auto& all) {
+      return std::vector(all.begin() + best * carried, all.begin() + (best + 1) * carried);
+    };
+    commit(std::move(*star), affected, slots(trial_points), slots(trial_images), check, best_score);
     return true;
   }
 
