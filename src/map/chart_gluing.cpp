@@ -9,10 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <optional>
-#include <unordered_map>
-#include <unordered_set>
 #include <utility>
 
 namespace xparam {
@@ -59,25 +58,37 @@ std::vector<int> boundary_loop_of(const std::vector<std::array<int, 3>>& triangl
   long long n = 0;  // directed edge (a, b) is keyed by a * n + b
   for (const std::array<int, 3>& t : triangles)
     n = std::max<long long>(n, *std::max_element(t.begin(), t.end()) + 1);
-  std::unordered_set<long long> directed;
+  // Sorted vectors, not hash containers: charts are built for every union tried, and a node per
+  // edge was most of the gluing's allocations.
+  std::vector<long long> directed;
+  directed.reserve(3 * triangles.size());
   for (const std::array<int, 3>& t : triangles) {
-    for (int k = 0; k < 3; ++k) directed.insert(t[k] * n + t[(k + 1) % 3]);
+    for (int k = 0; k < 3; ++k) directed.push_back(t[k] * n + t[(k + 1) % 3]);
   }
-  std::unordered_map<int, int> successor;
-  int start = -1;
+  std::sort(directed.begin(), directed.end());
+  std::vector<std::pair<int, int>> successor;  // boundary edges (a, b), sorted by a
   for (const std::array<int, 3>& t : triangles) {
     for (int k = 0; k < 3; ++k) {
       const int a = t[k];
       const int b = t[(k + 1) % 3];
-      if (directed.count(b * n + a)) continue;
-      if (!successor.emplace(a, b).second) return {};  // a pinched vertex
-      if (start < 0 || a < start) start = a;
+      if (!std::binary_search(directed.begin(), directed.end(), b * n + a)) successor.emplace_back(a, b);
     }
   }
+  if (successor.empty()) return {};
+  std::sort(successor.begin(), successor.end());
+  for (std::size_t k = 1; k < successor.size(); ++k) {
+    if (successor[k].first == successor[k - 1].first) return {};  // a pinched vertex
+  }
+  const auto next = [&](int v) {
+    const auto it =
+        std::lower_bound(successor.begin(), successor.end(), std::pair{v, std::numeric_limits<int>::min()});
+    return it != successor.end() && it->first == v ? it->second : -1;
+  };
+  const int start = successor.front().first;  // the smallest vertex on the boundary
   std::vector<int> loop;
   for (int v = start; v >= 0 && loop.size() <= successor.size();) {
     loop.push_back(v);
-    v = successor.at(v);
+    v = next(v);
     if (v == start) break;
   }
   if (loop.size() != successor.size()) return {};
@@ -88,7 +99,14 @@ ChartMesh chart_mesh(const Chart& chart, const GluingInput& input) {
   const SidePatches& source_side = (*input.sides)[0];
   const SidePatches& target_side = (*input.sides)[1];
   ChartMesh mesh;
-  std::unordered_map<int, int> union_of_mesh_vertex;
+  // The chart's mesh vertices, sorted, and each one's union vertex (-1 until met): union vertices
+  // are numbered in the order the patches meet them.
+  std::vector<int> ids;
+  for (const int p : chart.patches)
+    ids.insert(ids.end(), source_side.local_to_mesh[p].begin(), source_side.local_to_mesh[p].end());
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::vector<int> union_of_id(ids.size(), -1);
   std::vector<int> mesh_vertex;
   mesh.to_union.resize(chart.patches.size());
   for (size_t i = 0; i < chart.patches.size(); ++i) {
@@ -98,13 +116,14 @@ ChartMesh chart_mesh(const Chart& chart, const GluingInput& input) {
     to_union.resize(patch.positions.size());
     for (size_t v = 0; v < patch.positions.size(); ++v) {
       const int id = source_side.local_to_mesh[p][v];
-      const auto [it, inserted] = union_of_mesh_vertex.emplace(id, static_cast<int>(mesh_vertex.size()));
-      if (inserted) {
+      int& index = union_of_id[std::lower_bound(ids.begin(), ids.end(), id) - ids.begin()];
+      if (index < 0) {
+        index = static_cast<int>(mesh_vertex.size());
         mesh_vertex.push_back(id);
         mesh.source.positions.push_back(patch.positions[v]);
         mesh.source_uv.push_back(chart.source[i][v]);
       }
-      to_union[v] = it->second;
+      to_union[v] = index;
     }
     for (const std::array<int, 3>& t : patch.triangles) {
       mesh.source.triangles.push_back({to_union[t[0]], to_union[t[1]], to_union[t[2]]});
