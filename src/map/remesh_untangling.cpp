@@ -247,13 +247,11 @@ class Untangler {
     };
     tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(targets.size())),
                       [&](const tbb::blocked_range<int>& range) {
-                        StarMove move = *star;  // one copy per task
                         Replacements replaced(carried);
                         for (int i = range.begin(); i != range.end(); ++i) {
-                          move.to = targets[i];
                           for (std::size_t a = 0; a < carried; ++a) {
                             SurfacePoint& point = trial_points[i * carried + a];
-                            point = apply_star(move, points_[affected[a]]);
+                            point = apply_star(*star, targets[i], points_[affected[a]]);
                             trial_images[i * carried + a] = gamma_(point);
                           }
                           replacements(i, replaced);

@@ -112,6 +112,10 @@ double fan_area2(const StarMove& move, int j, const Eigen::Vector2d& x) {
 
 // One applied star move: p in the star's open interior is re-fanned, anything else stays.
 SurfacePoint apply_star(const StarMove& move, const SurfacePoint& point) {
+  return apply_star(move, move.to, point);
+}
+
+SurfacePoint apply_star(const StarMove& move, const Eigen::Vector2d& to, const SurfacePoint& point) {
   const auto it = std::find(move.faces.begin(), move.faces.end(), point.face);
   if (it == move.faces.end()) return point;
   const int k = static_cast<int>(move.ring.size());
@@ -123,7 +127,7 @@ SurfacePoint apply_star(const StarMove& move, const SurfacePoint& point) {
       point.bary[(s + 1) % 3] * move.ring[j] + point.bary[(s + 2) % 3] * move.ring[(j + 1) % k];
   const auto [m, lambda] = locate_in_fan(move, move.from, flat);
   const Eigen::Vector2d moved =
-      lambda[0] * move.to + lambda[1] * move.ring[m] + lambda[2] * move.ring[(m + 1) % k];
+      lambda[0] * to + lambda[1] * move.ring[m] + lambda[2] * move.ring[(m + 1) % k];
   const auto [n, mu] = locate_in_fan(move, Eigen::Vector2d::Zero(), moved);
   SurfacePoint result;
   result.face = move.faces[n];

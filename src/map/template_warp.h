@@ -79,6 +79,8 @@ double disc_area2(const RingMove& move, const std::vector<Eigen::Vector2d>& plac
 /// A star move applied to a template point: a point in the star's open interior is re-fanned
 /// from `to`, anything else stays.
 SurfacePoint apply_star(const StarMove& move, const SurfacePoint& point);
+/// The same with the fan centre moved to `to` instead of move.to (a trial, without copying the move).
+SurfacePoint apply_star(const StarMove& move, const Eigen::Vector2d& to, const SurfacePoint& point);
 
 /// True when a ring move changes `point`: it has positive weight on a disc vertex whose place
 /// changes (the centre, the disc's boundary and everything outside stay exactly).
