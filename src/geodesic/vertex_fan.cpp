@@ -30,9 +30,11 @@ double corner_angle(const Mesh& mesh, FaceHandle f, VertexHandle v) {
 
 std::optional<std::vector<FaceHandle>> fan_between(const Mesh& mesh, VertexHandle v, FaceHandle first,
                                                    FaceHandle last, FanStep step) {
-  std::vector<FaceHandle> faces{first};
-  FaceHandle f = first;
   const int max_steps = static_cast<int>(mesh.valence(v));
+  std::vector<FaceHandle> faces;
+  faces.reserve(max_steps + 1);  // one allocation, not one per doubling
+  faces.push_back(first);
+  FaceHandle f = first;
   for (int steps = 0; f != last; ++steps) {
     if (steps >= max_steps) return std::nullopt;
     const HalfedgeHandle out = outgoing_in_face(mesh, f, v);
