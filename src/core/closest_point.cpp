@@ -159,8 +159,8 @@ int ClosestPointIndex::build(int begin, int end, int depth, const std::vector<Ei
   Eigen::Vector3d centroid_lo = lo;
   Eigen::Vector3d centroid_hi = hi;
   for (int slot = begin; slot < end; ++slot) {
-    for (const Eigen::Vector3d& corner :
-         triangles_[faces_[slot]]) {  // face order until the end of build_tree
+    // triangles_ is in face order until build_tree puts it in slot order.
+    for (const Eigen::Vector3d& corner : triangles_[faces_[slot]]) {
       lo = lo.cwiseMin(corner);
       hi = hi.cwiseMax(corner);
     }

@@ -27,14 +27,8 @@ double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x()
 
 // A candidate's verdict on the faces it touches.
 struct Score {
-  std::vector<int> flipped;                                 // ascending face ids
+  int flipped = 0;                                          // how many are flipped
   double worst = -std::numeric_limits<double>::infinity();  // smallest face quality
-};
-
-// A Score's figures without its list of faces.
-struct FlipCount {
-  std::size_t flipped = 0;
-  double worst = -std::numeric_limits<double>::infinity();
 };
 
 // A ring move's cost over some remesh faces, compared lexicographically: flipped faces, then
@@ -169,24 +163,12 @@ class Untangler {
     return rho > 0.0 ? std::min(rho, 1.0 / rho) : 0.0;
   }
 
-  // score's figures without the list: how many of `faces` are flipped, and the worst quality.
-  FlipCount count_flips(const std::vector<int>& faces, const Replacements& replaced) const {
-    FlipCount count;
-    count.worst = std::numeric_limits<double>::infinity();
-    for (int f : faces) {
-      const double q = quality(f, replaced);
-      count.flipped += q < 0.0;
-      count.worst = std::min(count.worst, q);
-    }
-    return count;
-  }
-
   Score score(const std::vector<int>& faces, const Replacements& replaced) const {
     Score s;
     s.worst = std::numeric_limits<double>::infinity();
     for (int f : faces) {
       const double q = quality(f, replaced);
-      if (q < 0.0) s.flipped.push_back(f);
+      s.flipped += q < 0.0;
       s.worst = std::min(s.worst, q);
     }
     return s;
@@ -235,46 +217,38 @@ class Untangler {
     const Score before = score(check, Replacements{});
 
     const std::vector<Eigen::Vector2d> targets = candidates(*star);
-    // Each trial's points and images in one block of `carried` slots, and only its count of
-    // flips and worst face: this runs for every candidate of every star tried, and a vector per
-    // trial was most of the untangling's allocations. The winner's flipped faces are listed again.
+    // Each trial's points and images in one block of `carried` slots: this runs for every
+    // candidate of every star tried, and vectors per trial were most of the untangling's
+    // allocations.
     const std::size_t carried = affected.size();
     std::vector<SurfacePoint> trial_points(targets.size() * carried);
     std::vector<MappedPoint> trial_images(targets.size() * carried);
-    std::vector<FlipCount> trial_scores(targets.size());
-    const auto replacements = [&](std::size_t i, Replacements& replaced) {
-      for (std::size_t a = 0; a < carried; ++a) replaced[a] = {affected[a], &trial_images[i * carried + a]};
-    };
+    std::vector<Score> trial_scores(targets.size());
     tbb::parallel_for(tbb::blocked_range<int>(0, static_cast<int>(targets.size())),
                       [&](const tbb::blocked_range<int>& range) {
                         Replacements replaced(carried);
                         for (int i = range.begin(); i != range.end(); ++i) {
                           for (std::size_t a = 0; a < carried; ++a) {
                             SurfacePoint& point = trial_points[i * carried + a];
+                            MappedPoint& image = trial_images[i * carried + a];
                             point = apply_star(*star, targets[i], points_[affected[a]]);
-                            trial_images[i * carried + a] = gamma_(point);
+                            image = gamma_(point);
+                            replaced[a] = {affected[a], &image};
                           }
-                          replacements(i, replaced);
-                          trial_scores[i] = count_flips(check, replaced);
+                          trial_scores[i] = score(check, replaced);
                         }
                       });
 
     // Fewest flips, then the best worst face.
     int best = -1;
     for (int i = 0; i < static_cast<int>(trial_scores.size()); ++i) {
-      const FlipCount& s = trial_scores[i];
+      const Score& s = trial_scores[i];
       if (best < 0 || s.flipped < trial_scores[best].flipped ||
           (s.flipped == trial_scores[best].flipped && s.worst > trial_scores[best].worst)) {
         best = i;
       }
     }
-    Score best_score;
-    if (best >= 0) {
-      Replacements replaced(carried);
-      replacements(best, replaced);
-      best_score = score(check, replaced);
-    }
-    if (best < 0 || !improves(before, best_score)) {
+    if (best < 0 || !improves(before, trial_scores[best])) {
       std::vector<int> read;  // the corners of the faces scored: what the trials read
       for (int f : check) read.insert(read.end(), faces_[f].begin(), faces_[f].end());
       std::sort(read.begin(), read.end());
@@ -287,7 +261,7 @@ class Untangler {
     const auto slots = [&](const auto& all) {
       return std::vector(all.begin() + best * carried, all.begin() + (best + 1) * carried);
     };
-    commit(std::move(*star), affected, slots(trial_points), slots(trial_images), check, best_score);
+    commit(std::move(*star), affected, slots(trial_points), slots(trial_images), check);
     return true;
   }
 
@@ -366,11 +340,11 @@ class Untangler {
     return true;
   }
 
-  // Record a kept move: the new points and images of the vertices it carries, the faces it
-  // changed.
+  // Record a kept move: the new points and images of the vertices it carries, and which of the
+  // faces it changed (`check`) are flipped now.
   void commit(std::variant<StarMove, RingMove> move, const std::vector<int>& affected,
               const std::vector<SurfacePoint>& points, const std::vector<MappedPoint>& images,
-              const std::vector<int>& check, const Score& score) {
+              const std::vector<int>& check) {
     warp_.moves.push_back(std::move(move));
     ++commits_;
     for (std::size_t a = 0; a < affected.size(); ++a) {
@@ -383,8 +357,7 @@ class Untangler {
         moved_list_.insert(std::lower_bound(moved_list_.begin(), moved_list_.end(), u), u);
       }
     }
-    for (int f : check) flipped_[f] = false;
-    for (int f : score.flipped) flipped_[f] = true;
+    for (int f : check) flipped_[f] = quality(f, Replacements{}) < 0.0;
   }
 
   // Faces around any of `vertices`, ascending.
@@ -676,7 +649,7 @@ class Untangler {
     for (std::size_t a = 0; a < affected.size(); ++a) after_images.emplace_back(affected[a], &images[a]);
     const Score after = score(check, after_images);
     if (!improves(before, after)) return false;
-    commit(std::move(move), affected, points, images, check, after);
+    commit(std::move(move), affected, points, images, check);
     return true;
   }
 
@@ -684,7 +657,7 @@ class Untangler {
   // to a face where another vertex can undo it), or (a step towards removing them with a later
   // move of a neighbour) as many, clearly less folded.
   bool improves(const Score& before, const Score& after) const {
-    if (after.flipped.size() != before.flipped.size()) return after.flipped.size() < before.flipped.size();
+    if (after.flipped != before.flipped) return after.flipped < before.flipped;
     return after.worst > before.worst + settings_.min_gain;
   }
 
