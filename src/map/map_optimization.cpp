@@ -486,7 +486,7 @@ bool MapOptimizer::move_vertex(int v) {
   const SurfacePoint& here = locations_[v];
   const Eigen::Vector3d x = positions_[v];
   // Buffers reused by each thread's calls: a pair makes millions of moves, each over a ring of a
-  // few faces, and allocating them each time cost a few percent of the whole pair.
+  // few faces (allocated per call, they were 6.8M of cat/horse's 29.6M allocations).
   thread_local std::vector<FaceReferences> references;
   thread_local std::vector<FaceReferences> moved_references;
   thread_local std::vector<FaceValue> distortions;
