@@ -1,6 +1,7 @@
 #include "map/chart_gluing.h"
 
 #include "core/errors.h"
+#include "core/outgoing_edges.h"
 #include "param/point_locator.h"
 
 #include <tbb/parallel_for.h>
@@ -55,23 +56,15 @@ struct ChartMesh {
 // The boundary of a triangulated disk as a counter-clockwise loop; empty when the boundary is
 // not one simple loop.
 std::vector<int> boundary_loop_of(const std::vector<std::array<int, 3>>& triangles) {
-  long long n = 0;  // directed edge (a, b) is keyed by a * n + b
-  for (const std::array<int, 3>& t : triangles)
-    n = std::max<long long>(n, *std::max_element(t.begin(), t.end()) + 1);
-  // Sorted vectors, not hash containers: charts are built for every union tried, and a node per
-  // edge was most of the gluing's allocations.
-  std::vector<long long> directed;
-  directed.reserve(3 * triangles.size());
-  for (const std::array<int, 3>& t : triangles) {
-    for (int k = 0; k < 3; ++k) directed.push_back(t[k] * n + t[(k + 1) % 3]);
-  }
-  std::sort(directed.begin(), directed.end());
+  int n = 0;
+  for (const std::array<int, 3>& t : triangles) n = std::max(n, *std::max_element(t.begin(), t.end()) + 1);
+  const OutgoingEdges edges(triangles, n);
   std::vector<std::pair<int, int>> successor;  // boundary edges (a, b), sorted by a
   for (const std::array<int, 3>& t : triangles) {
     for (int k = 0; k < 3; ++k) {
       const int a = t[k];
       const int b = t[(k + 1) % 3];
-      if (!std::binary_search(directed.begin(), directed.end(), b * n + a)) successor.emplace_back(a, b);
+      if (!edges.has(b, a)) successor.emplace_back(a, b);
     }
   }
   if (successor.empty()) return {};

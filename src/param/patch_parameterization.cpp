@@ -1,6 +1,7 @@
 #include "param/patch_parameterization.h"
 
 #include "core/errors.h"
+#include "core/outgoing_edges.h"
 #include "param/convex_polygon.h"
 
 #include <tbb/parallel_for.h>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <exception>
 #include <optional>
+#include <span>
 #include <sstream>
 #include <utility>
 
@@ -43,36 +45,19 @@ void check_disk(const DiskPatch& patch) {
     if (!used[v]) fail(patch, "vertex " + std::to_string(v) + " is in no triangle");
   }
 
-  // The directed edges leaving each vertex, in triangle order (a few per vertex, so lists
-  // searched linearly: this check runs on every patch, and sorting all edges cost more). Of the
-  // edges used twice in one direction, the one whose second use comes first in triangle order is
-  // named, so messages name the same edge every run.
-  std::vector<int> first_out(n_vertices + 1, 0);  // edges leaving v: out[first_out[v] .. first_out[v + 1])
-  for (const auto& t : patch.triangles) {
-    for (int c = 0; c < 3; ++c) ++first_out[t[c] + 1];
-  }
-  for (int v = 0; v < n_vertices; ++v) first_out[v + 1] += first_out[v];
-  std::vector<std::pair<int, std::size_t>> out(first_out.back());  // (head, 3 * triangle + corner)
-  std::vector<int> filled(first_out.begin(), first_out.end() - 1);
-  for (std::size_t f = 0; f < patch.triangles.size(); ++f) {
-    const auto& t = patch.triangles[f];
-    for (int c = 0; c < 3; ++c) out[filled[t[c]]++] = {t[(c + 1) % 3], 3 * f + c};
-  }
-  const auto has = [&](int a, int b) {
-    for (int k = first_out[a]; k < first_out[a + 1]; ++k) {
-      if (out[k].first == b) return true;
-    }
-    return false;
-  };
-  std::size_t repeated = out.size();
+  // Of the edges used twice in one direction, the one whose second use comes first in triangle
+  // order is named, so messages name the same edge every run.
+  const OutgoingEdges edges(patch.triangles, n_vertices);
+  std::size_t repeated = 3 * patch.triangles.size();
   for (int a = 0; a < n_vertices; ++a) {
-    for (int k = first_out[a]; k < first_out[a + 1]; ++k) {
-      for (int j = first_out[a]; j < k; ++j) {
-        if (out[j].first == out[k].first) repeated = std::min(repeated, out[k].second);
+    const std::span<const OutgoingEdges::Edge> out = edges.leaving(a);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      for (std::size_t j = 0; j < k; ++j) {
+        if (out[j].head == out[k].head) repeated = std::min(repeated, out[k].slot);
       }
     }
   }
-  if (repeated < out.size()) {
+  if (repeated < 3 * patch.triangles.size()) {
     const auto& t = patch.triangles[repeated / 3];
     const int c = static_cast<int>(repeated % 3);
     fail(patch, "edge (" + std::to_string(t[c]) + ", " + std::to_string(t[(c + 1) % 3]) +
@@ -82,9 +67,9 @@ void check_disk(const DiskPatch& patch) {
   int boundary_edges = 0;
   int undirected_edges = 0;
   for (int a = 0; a < n_vertices; ++a) {
-    for (int k = first_out[a]; k < first_out[a + 1]; ++k) {
-      const int b = out[k].first;
-      const bool twin = has(b, a);
+    for (const OutgoingEdges::Edge& edge : edges.leaving(a)) {
+      const int b = edge.head;
+      const bool twin = edges.has(b, a);
       boundary_edges += !twin;
       undirected_edges += twin ? (a < b) : 1;
     }
@@ -102,7 +87,7 @@ void check_disk(const DiskPatch& patch) {
     if (a < 0 || a >= n_vertices || on_loop[a])
       fail(patch, "boundary loop entry " + std::to_string(i) + " is invalid or repeated");
     on_loop[a] = 1;
-    if (b < 0 || b >= n_vertices || !has(a, b) || has(b, a)) {
+    if (b < 0 || b >= n_vertices || !edges.has(a, b) || edges.has(b, a)) {
       fail(patch, "boundary loop step (" + std::to_string(a) + ", " + std::to_string(b) +
                       ") is not a counter-clockwise boundary edge of the triangles");
     }
