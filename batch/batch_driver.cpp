@@ -169,6 +169,7 @@ std::string batch_options_json(const PairSettings& settings, const QualityLimits
   options["extremity_anchors"] = settings.extremity_anchors;
   options["tip_rounds"] = settings.tip_rounds;
   options["tip_rows"] = settings.tip_rows;
+  options["fitted_tip_rows"] = settings.fitted_tip_rows;
   options["map_carried_tips"] = settings.map_carried_tips;
   options["pull_carried_tips"] = settings.pull_carried_tips;
   options["whole_map_up_to"] = settings.whole_map_up_to;
@@ -202,6 +203,7 @@ std::string implied_options_json() {
   before.extremity_anchors = false;
   before.tip_rounds = 1;
   before.tip_rows = false;
+  before.fitted_tip_rows = false;
   before.retry_doubtful_tips = false;
   before.pull_carried_tips = false;
   before.untangle = false;

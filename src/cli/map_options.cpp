@@ -69,6 +69,13 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "without them (default on: on FAUST subjects with realistic landmark sets the worse foot's "
       "ground-truth error 0.49 -> 0.38% of sqrt(area) on average)");
   command.add_flag(
+      "--fitted-tip-rows,!--no-fitted-tip-rows", settings.fitted_tip_rows,
+      "With --tip-rows, pair those toes also by fitting the template's foot rigidly onto the target's, "
+      "and where the fit pairs them otherwise, map once more with its pairs; keep that map when it folds "
+      "no more and is at most 0.5% more stretched (default on: a first map that turns a forefoot by one "
+      "toe left FAUST feet with every toe on its neighbour; one more whole map where it applies, counted "
+      "against --max-maps)");
+  command.add_flag(
       "--map-carried-tips,!--no-map-carried-tips", settings.map_carried_tips,
       "Make a round of tips even when the map before already carries every one of them to its partner "
       "within the tip reach (2.5% of sqrt(area)) on both meshes (default on). Off saves that round on "

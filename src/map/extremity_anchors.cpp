@@ -3,6 +3,7 @@
 #include "core/closest_point.h"
 #include "core/errors.h"
 #include "layout/anchor_voronoi.h"
+#include "map/rigid_fit.h"
 
 #include <algorithm>
 #include <cmath>
@@ -258,6 +259,61 @@ std::vector<std::pair<int, int>> clear_distance_matches(const DistanceSide& sour
   return pairs;
 }
 
+// Each matched tip's row on one mesh (side 0: the template, 1: the target): the short tips nearer
+// it than any other matched tip, beyond kShortTipReach of the reach (not the tip itself) and within
+// kRowReaches, as (distance from it, vertex), nearest first.
+std::vector<std::vector<std::pair<double, int>>> rows_beside(const TipsAndAnchors& side,
+                                                             const std::vector<int>& shorts,
+                                                             const std::vector<ExtremityAnchor>& matched,
+                                                             int mesh_side) {
+  const double reach = side.reach * std::sqrt(surface_area(side.mesh));
+  std::vector<std::vector<std::pair<double, int>>> beside(matched.size());
+  for (int v : shorts) {
+    const Eigen::Vector3d at = position(side.mesh, side.mesh.vertex_handle(v));
+    int nearest = -1;
+    double nearest_distance = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < matched.size(); ++k) {
+      const int tip = std::get<AnchorVertex>(matched[k].specs[mesh_side].location).index;
+      const double d = (position(side.mesh, side.mesh.vertex_handle(tip)) - at).norm();
+      if (d < nearest_distance) {
+        nearest_distance = d;
+        nearest = static_cast<int>(k);
+      }
+    }
+    if (nearest_distance <= kShortTipReach * reach || nearest_distance > kRowReaches * reach) continue;
+    beside[nearest].push_back({nearest_distance, v});
+  }
+  for (auto& row : beside) std::sort(row.begin(), row.end());
+  return beside;
+}
+
+// The template's surface within `radius` of vertex `center` laid onto the target rigidly: iterated
+// closest points (map/rigid_fit.h) from the motion that fits the region to its images through
+// `map`, and from that motion moved to put `center` on each of `starts` (the first map may have
+// turned a forefoot by a toe, a distance the steps do not climb out of); the fit nearest the
+// target kept (the first of equals).
+SurfaceFit fit_region(const Mesh& source, int center, double radius, const FirstMap& map,
+                      const ClosestPointIndex& target, const std::vector<Eigen::Vector3d>& starts) {
+  const Eigen::Vector3d at = position(source, source.vertex_handle(center));
+  std::vector<Eigen::Vector3d> region;
+  std::vector<Eigen::Vector3d> images;
+  for (VertexHandle v : source.vertices()) {
+    if ((position(source, v) - at).norm() > radius) continue;
+    region.push_back(position(source, v));
+    images.push_back(map.images[v.idx()]);
+  }
+  const double tolerance = kFitTolerance * radius / kRowReaches;
+  const RigidMotion through_map = fitted_motion(region, images);
+  SurfaceFit best = fit_to_surface(region, target, through_map, tolerance, kFitSteps);
+  for (const Eigen::Vector3d& start : starts) {
+    RigidMotion moved = through_map;
+    moved.translation += start - through_map(at);
+    const SurfaceFit fit = fit_to_surface(region, target, moved, tolerance, kFitSteps);
+    if (fit.mean_distance < best.mean_distance) best = fit;
+  }
+  return best;
+}
+
 }  // namespace
 
 Extremities extremities(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach) {
@@ -486,34 +542,10 @@ std::vector<ExtremityAnchor> match_short_tip_rows(
     const std::vector<std::string>& taken, double max_mismatch) {
   std::vector<ExtremityAnchor> rows;
   if (matched.empty()) return rows;
-  // Each matched tip's row on one mesh: the short tips nearer it than any other matched tip,
-  // beyond a third of the reach (not the tip itself) and within kRowReaches, by distance from it.
   const double source_root_area = std::sqrt(surface_area(source.mesh));
   const double target_root_area = std::sqrt(surface_area(target.mesh));
-  const auto rows_beside = [&](const TipsAndAnchors& side, const std::vector<int>& shorts, int mesh_side,
-                               double root_area) {
-    const double reach = side.reach * root_area;
-    std::vector<std::vector<std::pair<double, int>>> beside(matched.size());
-    for (int v : shorts) {
-      const Eigen::Vector3d at = position(side.mesh, side.mesh.vertex_handle(v));
-      int nearest = -1;
-      double nearest_distance = std::numeric_limits<double>::infinity();
-      for (std::size_t k = 0; k < matched.size(); ++k) {
-        const int tip = std::get<AnchorVertex>(matched[k].specs[mesh_side].location).index;
-        const double d = (position(side.mesh, side.mesh.vertex_handle(tip)) - at).norm();
-        if (d < nearest_distance) {
-          nearest_distance = d;
-          nearest = static_cast<int>(k);
-        }
-      }
-      if (nearest_distance <= kShortTipReach * reach || nearest_distance > kRowReaches * reach) continue;
-      beside[nearest].push_back({nearest_distance, v});
-    }
-    for (auto& row : beside) std::sort(row.begin(), row.end());
-    return beside;
-  };
-  const auto source_rows = rows_beside(source, source_short, 0, source_root_area);
-  const auto target_rows = rows_beside(target, target_short, 1, target_root_area);
+  const auto source_rows = rows_beside(source, source_short, matched, 0);
+  const auto target_rows = rows_beside(target, target_short, matched, 1);
   const TipMismatch mismatch(source.mesh, target.mesh, map);
   std::vector<std::string> names = taken;
   for (const ExtremityAnchor& tip : matched) names.push_back(tip.specs[0].name);
@@ -541,6 +573,79 @@ std::vector<ExtremityAnchor> match_short_tip_rows(
     }
   }
   return rows;
+}
+
+std::vector<FittedRow> fit_tip_rows(const TipsAndAnchors& source, const std::vector<int>& source_short,
+                                    const TipsAndAnchors& target, const std::vector<int>& target_short,
+                                    const FirstMap& map, const std::vector<ExtremityAnchor>& matched,
+                                    const std::vector<std::string>& taken) {
+  std::vector<FittedRow> fitted;
+  if (matched.empty()) return fitted;
+  const auto source_rows = rows_beside(source, source_short, matched, 0);
+  const auto target_rows = rows_beside(target, target_short, matched, 1);
+  const double source_scale = std::sqrt(surface_area(source.mesh));
+  const double target_scale = std::sqrt(surface_area(target.mesh));
+  const ClosestPointIndex on_target(target.mesh);
+  const TipMismatch mismatch(source.mesh, target.mesh, map);
+  std::vector<std::string> names = taken;
+  for (const ExtremityAnchor& tip : matched) names.push_back(tip.specs[0].name);
+  std::size_t added = 0;
+  const auto at = [](const Mesh& mesh, int v) { return position(mesh, mesh.vertex_handle(v)); };
+  for (std::size_t k = 0; k < matched.size(); ++k) {
+    if (source_rows[k].empty() && target_rows[k].empty()) continue;
+    FittedRow row;
+    row.tip = static_cast<int>(k);
+    row.source = {std::get<AnchorVertex>(matched[k].specs[0].location).index};
+    row.target = {std::get<AnchorVertex>(matched[k].specs[1].location).index};
+    for (const auto& [distance, v] : source_rows[k]) row.source.push_back(v);
+    for (const auto& [distance, v] : target_rows[k]) row.target.push_back(v);
+    std::vector<Eigen::Vector3d> starts;
+    for (int t : row.target) starts.push_back(at(target.mesh, t));
+    const SurfaceFit fit = fit_region(source.mesh, row.source[0], kRowReaches * source.reach * source_scale,
+                                      map, on_target, starts);
+    if (!(fit.mean_distance <= kFitFarthest * target_scale)) continue;
+    const int n = static_cast<int>(row.source.size());
+    const int m = static_cast<int>(row.target.size());
+    std::vector<double> apart(static_cast<std::size_t>(n) * m);  // fractions of sqrt(target area)
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < m; ++j)
+        apart[i * m + j] =
+            (fit.motion(at(source.mesh, row.source[i])) - at(target.mesh, row.target[j])).norm() /
+            target_scale;
+    }
+    // Pairs clear of every other candidate on both meshes. The first pair with the row's tip on
+    // either mesh is that tip's, which keeps its name; the tip is left out when it has none.
+    bool tip_paired = false;
+    for (int i = 0; i < n; ++i) {
+      const int j = static_cast<int>(std::min_element(apart.begin() + i * m, apart.begin() + (i + 1) * m) -
+                                     (apart.begin() + i * m));
+      const double d = apart[i * m + j];
+      bool clear = d <= kFitPairApart;
+      for (int other = 0; other < n && clear; ++other)
+        clear = other == i || apart[other * m + j] >= kFitClearance * d;
+      for (int other = 0; other < m && clear; ++other)
+        clear = other == j || apart[i * m + other] >= kFitClearance * d;
+      if (!clear) continue;
+      const int s = row.source[i];
+      const int t = row.target[j];
+      const std::array<double, 2> miss = mismatch.misses(s, t, mismatch.preimage(t));
+      ExtremityAnchor pair;
+      if (!tip_paired && (i == 0 || j == 0)) {
+        tip_paired = true;
+        pair = matched[k];
+        if (i != 0 || j != 0) pair.rival_target = -1;  // a rival of its old partner
+        pair.specs[0].location = AnchorVertex{s};
+        pair.specs[1].location = AnchorVertex{t};
+        pair.miss = miss;
+      } else {
+        pair = tip_anchor(s, t, miss, matched.size() + ++added, names);
+        pair.matched_by = TipMatching::in_row;
+      }
+      row.pairs.push_back(std::move(pair));
+    }
+    fitted.push_back(std::move(row));
+  }
+  return fitted;
 }
 
 }  // namespace xparam

@@ -176,4 +176,47 @@ std::vector<ExtremityAnchor> match_short_tip_rows(const TipsAndAnchors& source,
                                                   const std::vector<ExtremityAnchor>& matched,
                                                   const std::vector<std::string>& taken, double max_mismatch);
 
+/// How near (mean distance, fraction of sqrt(target area)) a rigid fit must lay a row's region onto
+/// the target for its pairs to count (fit_tip_rows). FAUST feet against other subjects' feet:
+/// 0.00046-0.00091 (about a millimetre); hands, whose fingers bend between poses: 0.0013-0.0057.
+constexpr double kFitFarthest = 0.0012;
+/// A pair of the fit lies at most this far apart once the template's tip is moved by it, as a
+/// fraction of sqrt(target area): the right toes of the FAUST feet 0.0003-0.0057, a toe over 0.0129
+/// or more.
+constexpr double kFitPairApart = 0.008;
+/// ... and every other candidate on either mesh lies at least this many times as far.
+constexpr double kFitClearance = 2.0;
+/// The fit's steps end when no point moves by more than this fraction of the tip reach, or after
+/// kFitSteps steps.
+constexpr double kFitTolerance = 4e-4;
+constexpr int kFitSteps = 50;
+
+/// A row of match_short_tip_rows paired by a rigid fit: the template's tip and its row, the
+/// target's tip and its row, and the pairs the fit finds among them.
+struct FittedRow {
+  int tip = -1;             ///< index into `matched` of the row's tip
+  std::vector<int> source;  ///< the template's tip, then its row (input vertices)
+  std::vector<int> target;  ///< the target's tip, then its row
+  /// Pairs among them: the row's tip (its name kept, with the partner the fit gives it; absent when
+  /// the fit pairs it with nothing), then small toes (TipMatching::in_row, named as in
+  /// match_short_tip_rows).
+  std::vector<ExtremityAnchor> pairs;
+};
+
+/// Small toes paired by the shape of the foot rather than through the first map (session 38). The
+/// first map can turn a forefoot by one toe (FAUST 000/090 and 000/010 with 29 landmarks: every
+/// template toe on the target's next one), and then its tip is matched with the wrong toe and its
+/// row aligned beside it one toe over; the mismatches do not tell (right and wrong pairs miss alike).
+/// Here the template's surface within kRowReaches reaches of the row's tip is laid onto the target
+/// rigidly (fit_to_surface, map/rigid_fit.h: from the fit to its images through `map`, and from that
+/// fit moved to put the tip on each of the target's tip and row, the nearest fit kept). Where it lays
+/// the region within kFitFarthest of the target (a foot, not a hand whose fingers bend), a template
+/// toe and a target toe are paired when the fit puts them within kFitPairApart and every other
+/// candidate kFitClearance times as far. On the FAUST feet every such pair agrees with the truth.
+/// One FittedRow per row of match_short_tip_rows with a short tip on either mesh whose fit holds.
+std::vector<FittedRow> fit_tip_rows(const TipsAndAnchors& source, const std::vector<int>& source_short,
+                                    const TipsAndAnchors& target, const std::vector<int>& target_short,
+                                    const FirstMap& map, const std::vector<ExtremityAnchor>& matched,
+                                    const std::vector<std::string>& taken);
+
 }  // namespace xparam

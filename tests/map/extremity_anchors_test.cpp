@@ -2,11 +2,13 @@
 
 #include "layout/anchor_voronoi.h"
 #include "layout/layout_fixtures.h"
+#include "support/test_data.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <variant>
@@ -295,6 +297,89 @@ TEST_F(HandOfTips, ShortTipsInARowBesideAMatchedTipAreAlignedThroughTheMap) {
   EXPECT_EQ(rows[0].specs[0].name, "tip 2'");  // names avoid those taken
   // Without a matched tip there is no row.
   EXPECT_TRUE(match_short_tip_rows(source, {a, b, d}, target, {d, bump, a, b}, {identity, faces}, {}, {}, 0.1)
+                  .empty());
+}
+
+// The bundled man (SMPL's vertex order) as the template, and moved rigidly as the target: its
+// true map is the identity. The first map moves the left forefoot's images 2.5 cm sideways, as FAUST
+// first maps turned feet by a toe, and its tip (3306) was matched with the toe beside its own
+// (3229). The rigid fit lays the forefoot back, and pairs the tip and the toes of its row each with
+// itself, the tip keeping its name. (Fitted from the first map alone, the forefoot settles a toe
+// over and the test fails: the fits started from each of the target's toes find the right one.)
+class TurnedForefoot : public ::testing::Test {
+ protected:
+  TurnedForefoot()
+      : mesh(test::load(test::data_path("human_man.obj"))), target(mesh), faces(triangles_of(mesh)) {
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    const Eigen::Vector3d shift(0.3, -0.2, 0.5);
+    for (VertexHandle v : target.vertices()) target.set_point(v, to_point(turn * position(mesh, v) + shift));
+    const Eigen::Vector3d toe = position(mesh, VertexHandle(3306));
+    for (VertexHandle v : mesh.vertices()) {
+      const Eigen::Vector3d p = position(mesh, v);
+      const Eigen::Vector3d sideways =
+          (p - toe).norm() < 0.15 ? Eigen::Vector3d(0.025, 0.0, 0.0) : Eigen::Vector3d::Zero();
+      images.push_back(turn * (p + sideways) + shift);
+    }
+    tip.specs[0] = {"tip 1", AnchorVertex{3306}, "", 0};
+    tip.specs[1] = {"tip 1", AnchorVertex{3229}, "", 0};
+  }
+
+  const Mesh mesh;
+  Mesh target;
+  const std::vector<std::array<int, 3>> faces;
+  std::vector<Eigen::Vector3d> images;
+  ExtremityAnchor tip;
+  const std::vector<int> toes = {3220, 3306, 3229, 3225, 3360, 3295};
+  const Extremities none;
+  const std::vector<int> no_anchors;
+};
+
+TEST_F(TurnedForefoot, TheRigidFitPairsEachToeWithItself) {
+  const std::vector<FittedRow> rows =
+      fit_tip_rows({mesh, none, no_anchors, 0.025}, toes, {target, none, no_anchors, 0.025}, toes,
+                   {images, faces}, {tip}, {"tip 2"});
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].tip, 0);
+  EXPECT_EQ(rows[0].source.front(), 3306);
+  EXPECT_EQ(rows[0].target.front(), 3229);
+  ASSERT_EQ(rows[0].pairs.size(), toes.size());
+  for (const ExtremityAnchor& pair : rows[0].pairs) {
+    EXPECT_EQ(std::get<AnchorVertex>(pair.specs[0].location).index,
+              std::get<AnchorVertex>(pair.specs[1].location).index);
+    EXPECT_EQ(pair.specs[0].name, pair.specs[1].name);
+  }
+  EXPECT_EQ(rows[0].pairs[0].specs[0].name, "tip 1");  // the tip, paired anew
+  EXPECT_EQ(std::get<AnchorVertex>(rows[0].pairs[0].specs[0].location).index, 3306);
+  EXPECT_EQ(rows[0].pairs[1].matched_by, TipMatching::in_row);
+  EXPECT_EQ(rows[0].pairs[1].specs[0].name, "tip 2'");  // names avoid those taken
+  // Aligned through the first map instead, the row's toes lie beside the wrong tip: not every toe
+  // is paired with itself.
+  const std::vector<ExtremityAnchor> aligned =
+      match_short_tip_rows({mesh, none, no_anchors, 0.025}, toes, {target, none, no_anchors, 0.025}, toes,
+                           {images, faces}, {tip}, {}, 0.15);
+  EXPECT_TRUE(std::any_of(aligned.begin(), aligned.end(), [](const ExtremityAnchor& pair) {
+    return std::get<AnchorVertex>(pair.specs[0].location).index !=
+           std::get<AnchorVertex>(pair.specs[1].location).index;
+  }));
+}
+
+// A target whose toes are bent up by 30 degrees about the ball of the foot (5 cm behind the tip)
+// lies farther than kFitFarthest from any rigid motion of the template's forefoot: the fit does not
+// hold (as on a hand whose fingers bend), and no row is paired by it.
+TEST_F(TurnedForefoot, AForefootNoRigidMotionLaysOntoTheTargetIsNotPairedByIt) {
+  Mesh bent = mesh;
+  const Eigen::Vector3d ball = position(mesh, VertexHandle(3306)) - Eigen::Vector3d(0.0, 0.0, 0.05);
+  const Eigen::Matrix3d bend = Eigen::AngleAxisd(-0.52, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  for (VertexHandle v : bent.vertices()) {
+    const Eigen::Vector3d p = position(mesh, v);
+    if (p.z() > ball.z() && std::abs(p.x() - ball.x()) < 0.1)
+      bent.set_point(v, to_point(ball + bend * (p - ball)));
+  }
+  std::vector<Eigen::Vector3d> identity;
+  for (VertexHandle v : bent.vertices()) identity.push_back(position(bent, v));
+  EXPECT_TRUE(fit_tip_rows({mesh, none, no_anchors, 0.025}, toes, {bent, none, no_anchors, 0.025}, toes,
+                           {identity, faces}, {tip}, {})
                   .empty());
 }
 

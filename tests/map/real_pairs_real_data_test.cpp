@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <string>
 #include <variant>
@@ -155,6 +156,33 @@ DecimatedFaustPair load_decimated_faust_pair(const std::filesystem::path& data, 
   return {load_mesh(registrations / "tr_reg_000.ply"), std::move(original), load_mesh(file)};
 }
 
+// map_pair of FAUST 000 onto the decimated target with the 29 anthropometric landmarks, the target's
+// placed at the registration's points, as the evaluation maps it.
+PairMapping map_with_anthropometric_landmarks(const std::filesystem::path& data,
+                                              const DecimatedFaustPair& pair, const PairSettings& settings) {
+  const AnchorSet landmarks = read_anchors(data / "faust_landmarks/smpl_anthropometry_landmark_indices.json");
+  AnchorSet on_target = landmarks;
+  for (AnchorSpec& anchor : on_target.anchors)
+    anchor.location = AnchorPosition{
+        position(pair.original.mesh, VertexHandle(std::get<AnchorVertex>(anchor.location).index))};
+  return map_pair(pair.source.mesh, landmarks, pair.target.mesh, on_target, {}, settings);
+}
+
+// Mean distance of the remesh from the truth over the template vertices within `radius` of
+// `centre` (every vertex by default), as a fraction of sqrt(target area).
+double truth_error(const PairMapping& map, const DecimatedFaustPair& pair,
+                   const Eigen::Vector3d& centre = Eigen::Vector3d::Zero(),
+                   double radius = std::numeric_limits<double>::infinity()) {
+  double sum = 0.0;
+  int n = 0;
+  for (VertexHandle v : pair.source.mesh.vertices()) {
+    if ((position(pair.source.mesh, v) - centre).norm() > radius) continue;
+    sum += (map.remesh_vertices.row(v.idx()).transpose() - position(pair.original.mesh, v)).norm();
+    ++n;
+  }
+  return sum / n / std::sqrt(surface_area(pair.target.mesh));
+}
+
 // FAUST 010 decimated to 6000 vertices (another connectivity) against 000, with the 29
 // anthropometric landmarks, as the evaluation maps it (the target's landmarks are the registration's
 // points). The first map squeezes the left hand, and one of its fingertips is matched through it
@@ -167,25 +195,14 @@ DecimatedFaustPair load_decimated_faust_pair(const std::filesystem::path& data, 
 TEST(FaustPair, ADoubtfulTipMatchGivesWayToAMapWithoutIt) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
-  const auto [source, original, target] = load_decimated_faust_pair(data, "tr_reg_010");
-  const AnchorSet landmarks = read_anchors(data / "faust_landmarks/smpl_anthropometry_landmark_indices.json");
-  AnchorSet on_target = landmarks;
-  for (AnchorSpec& anchor : on_target.anchors)
-    anchor.location =
-        AnchorPosition{position(original.mesh, VertexHandle(std::get<AnchorVertex>(anchor.location).index))};
+  const DecimatedFaustPair pair = load_decimated_faust_pair(data, "tr_reg_010");
+  const auto& [source, original, target] = pair;
   PairSettings retrying;  // the default
   PairSettings keeping = retrying;
   keeping.retry_doubtful_tips = false;
-  const PairMapping kept = map_pair(source.mesh, landmarks, target.mesh, on_target, {}, keeping);
-  const PairMapping retried = map_pair(source.mesh, landmarks, target.mesh, on_target, {}, retrying);
+  const PairMapping kept = map_with_anthropometric_landmarks(data, pair, keeping);
+  const PairMapping retried = map_with_anthropometric_landmarks(data, pair, retrying);
 
-  const double root_area = std::sqrt(surface_area(target.mesh));
-  const auto truth_error = [&](const PairMapping& map) {
-    double sum = 0.0;
-    for (VertexHandle v : source.mesh.vertices())
-      sum += (map.remesh_vertices.row(v.idx()).transpose() - position(original.mesh, v)).norm();
-    return sum / static_cast<double>(source.mesh.n_vertices()) / root_area;
-  };
   // How far the farthest tip's target point lies from its template tip's true image.
   const auto worst_tip = [&](const std::vector<ExtremityAnchor>& tips) {
     double worst = 0.0;
@@ -204,10 +221,34 @@ TEST(FaustPair, ADoubtfulTipMatchGivesWayToAMapWithoutIt) {
   EXPECT_TRUE(kept.doubtful_tips.empty());
   ASSERT_EQ(retried.doubtful_tips.size(), 1u);
   EXPECT_GT(worst_tip(retried.doubtful_tips), 0.10);
-  EXPECT_LT(truth_error(retried), 0.008);
-  EXPECT_LT(truth_error(retried), 0.6 * truth_error(kept));
+  EXPECT_LT(truth_error(retried, pair), 0.008);
+  EXPECT_LT(truth_error(retried, pair), 0.6 * truth_error(kept, pair));
   EXPECT_LT(retried.distortion.all.e_l2, kept.distortion.all.e_l2);
   EXPECT_EQ(retried.quality.strictly_folded_faces, 0);
+}
+
+// FAUST 010 decimated as above, with the 29 anthropometric landmarks: the first map turns the left
+// forefoot by a toe, and the round of tips pairs every template toe with the target's next one (the
+// worse foot 1.08% of sqrt(area) from the truth, 1.5 cm; looked at: each toe on its neighbour's).
+// The rows' rigid fits pair them rightly, and the map through those pairs replaces the round's
+// (measured: the foot 0.07%, E_L2 1.0256 -> 1.0249, no fold).
+TEST(FaustPair, RigidFitsOfTheToesPutTheLeftToesOnTheirOwn) {
+  const std::filesystem::path data = test::shared_data_dir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
+  const DecimatedFaustPair pair = load_decimated_faust_pair(data, "tr_reg_010");
+  PairSettings fitted;  // the default
+  PairSettings aligned = fitted;
+  aligned.fitted_tip_rows = false;
+  const PairMapping with_fits = map_with_anthropometric_landmarks(data, pair, fitted);
+  const PairMapping without = map_with_anthropometric_landmarks(data, pair, aligned);
+  // The template's left forefoot: within 12 cm of a toe tip.
+  const Eigen::Vector3d toe = position(pair.source.mesh, VertexHandle(3306));
+  const auto forefoot_error = [&](const PairMapping& map) { return truth_error(map, pair, toe, 0.12); };
+  EXPECT_GT(forefoot_error(without), 0.008);  // the case: toes one over
+  EXPECT_LT(forefoot_error(with_fits), 0.002);
+  EXPECT_EQ(with_fits.quality.strictly_folded_faces, 0);
+  EXPECT_TRUE(with_fits.quality.flipped_faces.empty());
+  EXPECT_LT(with_fits.distortion.all.e_l2, 1.03);
 }
 
 // FAUST 080 decimated to 6000 vertices against 000, with the 72 landmarks placed on the subjects'
