@@ -420,7 +420,8 @@ std::vector<Configuration> configurations() {
   std::vector<Configuration> list;
   PairSettings s;
   s.retry_keeping_corners = false;  // the paper's configurations each build one layout,
-  s.tip_anchors = false;            // on the anchors given,
+  s.tip_anchors = false;            // on the anchors given (no helpers behind tips,
+  s.extremity_anchors = false;      // no anchors at protrusion tips),
   s.optimize_map = false;           // and map as the layout does
   s.optimization.stretch = false;
   s.optimization.metric = SwapMetric::none;
