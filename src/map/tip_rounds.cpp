@@ -307,30 +307,25 @@ FittedRowsChange fitted_rows_change(const std::vector<ExtremityAnchor>& tips,
 // through the right ones against 1.0085), the fit does.
 constexpr double kFittedRowsStretch = 0.005;
 
-// `won`, the map a round of `tips` made on `current`, or a map through its tips with `change`
-// made, when that is better or no worse by kFittedRowsStretch (nothing made when the fits change
-// nothing or no map is left).
+// `won`, a round's map on `current`, or the map through its tips with `change` made instead when
+// that map folds no more by both counts, keeps faces and area, and is at most kFittedRowsStretch more
+// stretched; `won` when the fits change none of its tips or no map is left.
 std::optional<AnchoredMap> with_fitted_rows(const PairInputs& in, const AnchoredMap& current,
                                             std::optional<AnchoredMap> won, const FittedRowsChange& change,
                                             PairSeconds& seconds) {
   if (!won || change.empty() || !in.work.allows_another_map()) return won;
   // The round's tips with the fits' pairs instead: a tip the fit pairs anew (it keeps its name) in
-  // its place, the toes the fit pairs after them.
+  // its place, the toes the fit pairs after them, named anew where their names are taken.
   const std::vector<ExtremityAnchor>& all = won->map.extremity_anchors;
-  std::vector<std::string> names = anchor_names(current.map.anchors[0]);
-  for (const ExtremityAnchor& tip : all) names.push_back(tip.specs[0].name);
-  std::vector<bool> placed(change.in.size(), false);
   std::vector<ExtremityAnchor> tips;
   bool changed = false;
-  const auto place = [&](std::size_t k) {
-    placed[k] = true;
-    // A vertex the round's map holds otherwise (its tip matched again through a later step).
-    if (holds_either_vertex(tips, change.in[k]) ||
-        holds_either_vertex(current.map.extremity_anchors, change.in[k]))
-      return;
-    tips.push_back(change.in[k]);
+  const auto place = [&](ExtremityAnchor tip) {
+    // Not where the round's map holds one of its vertices otherwise (matched again by a later step).
+    if (holds_either_vertex(tips, tip) || holds_either_vertex(current.map.extremity_anchors, tip)) return;
+    tips.push_back(std::move(tip));
     changed = true;
   };
+  std::vector<bool> placed(change.in.size(), false);
   for (auto tip = all.begin() + static_cast<std::ptrdiff_t>(current.map.extremity_anchors.size());
        tip != all.end(); ++tip) {
     if (!holds_pair(change.out, *tip)) {
@@ -339,21 +334,21 @@ std::optional<AnchoredMap> with_fitted_rows(const PairInputs& in, const Anchored
     }
     changed = true;
     for (std::size_t k = 0; k < change.in.size(); ++k) {
-      if (!placed[k] && change.in[k].specs[0].name == tip->specs[0].name) place(k);
+      if (placed[k] || change.in[k].specs[0].name != tip->specs[0].name) continue;
+      placed[k] = true;
+      place(change.in[k]);
     }
   }
+  std::vector<std::string> names = anchor_names(current.map.anchors[0]);
+  for (const ExtremityAnchor& tip : all) names.push_back(tip.specs[0].name);
   for (std::size_t k = 0; k < change.in.size(); ++k) {
     if (placed[k]) continue;
-    std::string name = change.in[k].specs[0].name;
+    ExtremityAnchor renamed = change.in[k];
+    std::string& name = renamed.specs[0].name;
     while (std::find(names.begin(), names.end(), name) != names.end()) name += "'";
     names.push_back(name);
-    ExtremityAnchor renamed = change.in[k];
-    renamed.specs[0].name = renamed.specs[1].name = name;
-    placed[k] = true;
-    if (holds_either_vertex(tips, renamed) || holds_either_vertex(current.map.extremity_anchors, renamed))
-      continue;
-    tips.push_back(std::move(renamed));
-    changed = true;
+    renamed.specs[1].name = name;
+    place(std::move(renamed));
   }
   if (!changed) return won;
   std::optional<AnchoredMap> fitted = map_with_extremity_anchors(in, current, std::move(tips), seconds);
