@@ -583,6 +583,11 @@ std::vector<FittedRow> fit_tip_rows(const TipsAndAnchors& source, const std::vec
   if (matched.empty()) return fitted;
   const auto source_rows = rows_beside(source, source_short, matched, 0);
   const auto target_rows = rows_beside(target, target_short, matched, 1);
+  const auto empty = [](const std::vector<std::pair<double, int>>& row) { return row.empty(); };
+  // Without a row there is nothing to fit, and the trees over the target and the remesh are not built.
+  if (std::all_of(source_rows.begin(), source_rows.end(), empty) &&
+      std::all_of(target_rows.begin(), target_rows.end(), empty))
+    return fitted;
   const double source_scale = std::sqrt(surface_area(source.mesh));
   const double target_scale = std::sqrt(surface_area(target.mesh));
   const ClosestPointIndex on_target(target.mesh);
