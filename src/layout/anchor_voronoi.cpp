@@ -22,7 +22,7 @@ std::pair<int, int> cells_of(const Mesh& mesh, const AnchorVoronoi& voronoi, Edg
 
 }  // namespace
 
-AnchorVoronoi anchor_voronoi(const Mesh& mesh, const std::vector<VertexHandle>& anchors) {
+AnchorVoronoi anchor_cells(const Mesh& mesh, const std::vector<VertexHandle>& anchors) {
   const std::size_t n = mesh.n_vertices();
   AnchorVoronoi voronoi;
   voronoi.cell.assign(n, -1);
@@ -48,6 +48,11 @@ AnchorVoronoi anchor_voronoi(const Mesh& mesh, const std::vector<VertexHandle>& 
       }
     }
   }
+  return voronoi;
+}
+
+AnchorVoronoi anchor_voronoi(const Mesh& mesh, const std::vector<VertexHandle>& anchors) {
+  AnchorVoronoi voronoi = anchor_cells(mesh, anchors);
   // Per touching pair: the length estimate, and its border edges, joined into stretches where
   // two of them bound one face (a face whose corners lie in three cells ends a stretch).
   std::map<std::pair<int, int>, double> border;

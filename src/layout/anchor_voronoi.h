@@ -34,6 +34,10 @@ struct AnchorVoronoi {
 /// Deterministic: ties go to the smaller vertex id, then the smaller anchor.
 AnchorVoronoi anchor_voronoi(const Mesh& mesh, const std::vector<VertexHandle>& anchors);
 
+/// The same cells and distances without the neighbours (left empty), for callers that need only
+/// those (the neighbours take a pass over every edge and face, and maps of the border).
+AnchorVoronoi anchor_cells(const Mesh& mesh, const std::vector<VertexHandle>& anchors);
+
 /// All-pairs anchor distances along the Delaunay graph of `voronoi` (#anchors x #anchors, row
 /// major; infinity between anchors of different components). Equals the neighbour length for
 /// touching cells whose direct estimate is shortest; an upper bound of the geodesic otherwise.

@@ -316,10 +316,15 @@ SurfaceFit fit_region(const Mesh& source, int center, double radius, const First
 
 }  // namespace
 
-Extremities extremities(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach) {
-  const std::vector<double> from_root = anchor_voronoi(mesh, {mesh.vertex_handle(root)}).distance;
+TipDistances tip_distances(const Mesh& mesh, int root, const std::vector<int>& anchors) {
+  return {anchor_cells(mesh, {mesh.vertex_handle(root)}).distance,
+          anchor_cells(mesh, handles(mesh, anchors))};
+}
+
+Extremities extremities(const Mesh& mesh, const TipDistances& distances, double reach) {
+  const std::vector<double>& from_root = distances.from_root;
   Extremities found;
-  found.cells = anchor_voronoi(mesh, handles(mesh, anchors));
+  found.cells = distances.cells;
   const std::vector<double>& from_anchors = found.cells.distance;
   for (VertexHandle v : mesh.vertices()) {
     const double here = from_root[v.idx()];

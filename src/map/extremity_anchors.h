@@ -43,8 +43,20 @@ struct Extremities {
   AnchorVoronoi cells;
 };
 
-/// The extremities of `mesh`. \pre root and anchors valid vertices of a connected mesh
-Extremities extremities(const Mesh& mesh, int root, const std::vector<int>& anchors, double reach);
+/// The edge-path distances extremities are found by on one mesh: from the root, and from the
+/// anchors with their cells. They do not depend on the reach, so a round that looks for tips at
+/// two reaches, and the rounds of one map, compute them once.
+struct TipDistances {
+  std::vector<double> from_root;  ///< #vertices
+  AnchorVoronoi cells;            ///< the anchors' cells (anchor_cells: no neighbours)
+};
+
+/// The distances of `mesh` from `root` and from `anchors`.
+/// \pre root and anchors valid vertices of a connected mesh
+TipDistances tip_distances(const Mesh& mesh, int root, const std::vector<int>& anchors);
+
+/// The extremities of `mesh` within `reach`, from its distances.
+Extremities extremities(const Mesh& mesh, const TipDistances& distances, double reach);
 
 /// How a tip pair was matched.
 enum class TipMatching {
@@ -93,7 +105,7 @@ std::vector<ExtremityAnchor> match_extremities(const Mesh& source, const std::ve
 /// One mesh's extremities and its anchors' vertices, the anchors in the same order on both meshes.
 struct TipsAndAnchors {
   const Mesh& mesh;
-  const Extremities& found;         ///< extremities(mesh, root, anchors, reach)
+  const Extremities& found;         ///< extremities(mesh, tip_distances(mesh, root, anchors), reach)
   const std::vector<int>& anchors;  ///< vertex of each anchor
   double reach = 0.0;               ///< the tips' reach, as a fraction of sqrt(area)
 };

@@ -4,6 +4,8 @@
 #include "core/stopwatch.h"
 #include "map/pair_finish.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -363,15 +365,21 @@ std::optional<AnchoredMap> with_fitted_rows(const PairInputs& in, const Anchored
   return no_worse ? std::move(fitted) : std::move(won);
 }
 
-// One round of tips on `current` (with_extremity_anchors), with the small toes' rows among its
-// tips when `rows`; `found_rows` tells whether there were any.
-std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredMap& current,
-                                           PairSeconds& seconds, bool rows, bool& found_rows) {
-  found_rows = false;
+// What the rounds of tips on one map look for tips with, [0] on the template and [1] on the
+// target: the anchors' vertices in the template's order, the edge-path distances from the root (the
+// template anchor nearest the anchors' centroid, and its namesake on the target) and from the
+// anchors, and the tip reach in each mesh's units.
+struct TipSearch {
+  std::array<std::vector<int>, 2> anchors;
+  std::array<TipDistances, 2> distances;
+  std::array<double, 2> reach{};
+};
+
+// The search on `current`'s anchors; none when the two meshes' anchors are not the same names.
+std::optional<TipSearch> tip_search(const PairInputs& in, const AnchoredMap& current) {
   const PlacedAnchors& on_source = current.map.anchors[0];
   const PlacedAnchors& on_target = current.map.anchors[1];
   if (on_source.anchors.size() != on_target.anchors.size() || on_source.anchors.empty()) return std::nullopt;
-  // The root: the template anchor nearest the anchors' centroid, and its namesake on the target.
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (const PlacedAnchor& anchor : on_source.anchors) centroid += position(in.source, anchor.input_point);
   centroid /= static_cast<double>(on_source.anchors.size());
@@ -388,13 +396,28 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
     if (same == on_target.anchors.end()) return std::nullopt;
     target_in_source_order.anchors.push_back(*same);
   }
-  const std::vector<int> source_anchors = input_vertices(in.source, on_source);
-  const std::vector<int> target_anchors = input_vertices(in.target, target_in_source_order);
-  const auto reach = [&](const Mesh& mesh) { return in.settings.tip_reach * std::sqrt(surface_area(mesh)); };
-  const Extremities on_source_ends =
-      extremities(in.source, source_anchors[root], source_anchors, reach(in.source));
-  const Extremities on_target_ends =
-      extremities(in.target, target_anchors[root], target_anchors, reach(in.target));
+  TipSearch search;
+  search.anchors = {input_vertices(in.source, on_source), input_vertices(in.target, target_in_source_order)};
+  const std::array<const Mesh*, 2> meshes = {&in.source, &in.target};
+  const auto on = [&](int side) {
+    search.distances[side] = tip_distances(*meshes[side], search.anchors[side][root], search.anchors[side]);
+    search.reach[side] = in.settings.tip_reach * std::sqrt(surface_area(*meshes[side]));
+  };
+  tbb::parallel_invoke([&] { on(0); }, [&] { on(1); });
+  return search;
+}
+
+// One round of tips on `current` (with_extremity_anchors), with the small toes' rows among its
+// tips when `rows`; `found_rows` tells whether there were any.
+std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredMap& current,
+                                           const TipSearch& search, PairSeconds& seconds, bool rows,
+                                           bool& found_rows) {
+  found_rows = false;
+  const PlacedAnchors& on_source = current.map.anchors[0];
+  const std::vector<int>& source_anchors = search.anchors[0];
+  const std::vector<int>& target_anchors = search.anchors[1];
+  const Extremities on_source_ends = extremities(in.source, search.distances[0], search.reach[0]);
+  const Extremities on_target_ends = extremities(in.target, search.distances[1], search.reach[1]);
   std::vector<Eigen::Vector3d> images(current.map.remesh_vertices.rows());
   for (int v = 0; v < static_cast<int>(images.size()); ++v)
     images[v] = current.map.remesh_vertices.row(v).transpose();
@@ -417,12 +440,12 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   std::erase_if(through_map, pulled_already);
   const TipsAndAnchors source_side{in.source, on_source_ends, source_anchors, in.settings.tip_reach};
   const TipsAndAnchors target_side{in.target, on_target_ends, target_anchors, in.settings.tip_reach};
-  const auto short_tips = [&](const Mesh& mesh, const std::vector<int>& anchors) {
-    return rows ? extremities(mesh, anchors[root], anchors, kShortTipReach * reach(mesh)).tips
+  const auto short_tips = [&](const Mesh& mesh, int side) {
+    return rows ? extremities(mesh, search.distances[side], kShortTipReach * search.reach[side]).tips
                 : std::vector<int>{};
   };
-  const std::vector<int> source_short = short_tips(in.source, source_anchors);
-  const std::vector<int> target_short = short_tips(in.target, target_anchors);
+  const std::vector<int> source_short = short_tips(in.source, 0);
+  const std::vector<int> target_short = short_tips(in.target, 1);
   // Tips matched through the map and those matched by cell and by distances on top of them.
   const auto with_cells_and_distances = [&](std::vector<ExtremityAnchor> tips) {
     for (ExtremityAnchor& tip :
@@ -558,12 +581,14 @@ std::optional<AnchoredMap> with_extremity_anchors(const PairInputs& in, const An
   // the rest were wrong: the round is then made again as without rows (FAUST 000/020 [73]: the map
   // through 16 tips, 4 of them toes, lost; the round without them wins, its worse hand 0.200% of
   // sqrt(area) against 0.753% for the map before the round).
+  const std::optional<TipSearch> search = tip_search(in, current);
+  if (!search) return std::nullopt;
   bool found_rows = false;
   if (in.settings.tip_rows) {
-    std::optional<AnchoredMap> with_rows = extremity_round(in, current, seconds, true, found_rows);
+    std::optional<AnchoredMap> with_rows = extremity_round(in, current, *search, seconds, true, found_rows);
     if (with_rows || !found_rows) return with_rows;
   }
-  return extremity_round(in, current, seconds, false, found_rows);
+  return extremity_round(in, current, *search, seconds, false, found_rows);
 }
 
 }  // namespace xparam::pair_maps

@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
+#include <vector>
 
 namespace xparam {
 namespace {
@@ -50,6 +52,23 @@ TEST(AnchorVoronoi, CellsMeetingOnBothSidesOfATubeShareTwoStretchesOfBorder) {
     const AnchorNeighbours* pair = pair_of(voronoi, a, b);
     ASSERT_NE(pair, nullptr) << a << "-" << b;
     EXPECT_EQ(pair->borders, 1) << a << "-" << b;
+  }
+}
+
+TEST(AnchorCells, EachVertexLiesInTheCellOfTheAnchorNearestAlongTheEdges) {
+  const Mesh mesh = tube();
+  const std::vector<VertexHandle> anchors =
+      test::handles({on_middle_ring(0), on_middle_ring(12), kBottom, kTop});
+  const AnchorVoronoi cells = anchor_cells(mesh, anchors);
+  EXPECT_TRUE(cells.neighbours.empty());
+  std::vector<std::vector<double>> from_each;
+  for (VertexHandle anchor : anchors) from_each.push_back(anchor_cells(mesh, {anchor}).distance);
+  for (VertexHandle v : mesh.vertices()) {
+    const std::size_t i = static_cast<std::size_t>(v.idx());
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const std::vector<double>& distance : from_each) nearest = std::min(nearest, distance[i]);
+    EXPECT_NEAR(cells.distance[i], nearest, 1e-12) << v.idx();
+    EXPECT_NEAR(from_each[cells.cell[i]][i], nearest, 1e-12) << v.idx();
   }
 }
 

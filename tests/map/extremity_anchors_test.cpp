@@ -30,8 +30,8 @@ Mesh spiked_octahedron() {
 // no helper.
 TEST(ProtrusionTips, AreTheEndsOfProtrusionsWithoutAnchors) {
   const Mesh mesh = spiked_octahedron();
-  EXPECT_EQ(extremities(mesh, 5, {5}, 0.5).tips, (std::vector<int>{0, 4}));
-  EXPECT_EQ(extremities(mesh, 5, {5, 4}, 0.5).tips, (std::vector<int>{0}));
+  EXPECT_EQ(extremities(mesh, tip_distances(mesh, 5, {5}), 0.5).tips, (std::vector<int>{0, 4}));
+  EXPECT_EQ(extremities(mesh, tip_distances(mesh, 5, {5, 4}), 0.5).tips, (std::vector<int>{0}));
 }
 
 // Through the identity map each tip is matched with itself, at no mismatch, and helper names
@@ -69,7 +69,10 @@ TEST(MatchExtremities, TheIdentityMatchesEachTipWithItself) {
 // rest in place.
 class SqueezedSpike : public ::testing::Test {
  protected:
-  SqueezedSpike() : mesh(spiked_octahedron()), ends(extremities(mesh, 5, anchors, 0.5)), faces(triangles_of(mesh)) {
+  SqueezedSpike()
+      : mesh(spiked_octahedron()),
+        ends(extremities(mesh, tip_distances(mesh, 5, anchors), 0.5)),
+        faces(triangles_of(mesh)) {
     const int spike_cell = anchor_voronoi(mesh, {VertexHandle(5), VertexHandle(2)}).cell[0];
     for (VertexHandle v : mesh.vertices()) images.push_back(position(mesh, v));
     images[0] = position(mesh, VertexHandle(anchors[spike_cell])) + Eigen::Vector3d(0.05, 0.0, 0.0);
@@ -139,8 +142,8 @@ TEST(CellMatch, ATipNearlyAsFarFromTheLandmarkIsTheMatchsRival) {
   const Mesh target = two_spikes(2.9, 3.0);
   const std::vector<int> anchors = {5, 2};
   const double reach = 0.5;
-  const Extremities on_source = extremities(source, 5, anchors, reach);
-  const Extremities on_target = extremities(target, 5, anchors, reach);
+  const Extremities on_source = extremities(source, tip_distances(source, 5, anchors), reach);
+  const Extremities on_target = extremities(target, tip_distances(target, 5, anchors), reach);
   ASSERT_EQ(on_source.tips, (std::vector<int>{0, 3, 4}));
   ASSERT_EQ(on_target.tips, (std::vector<int>{0, 3, 4}));
   ASSERT_EQ(on_source.cells.cell[0], on_source.cells.cell[3]);
@@ -167,7 +170,7 @@ TEST(CellMatch, ATipNearlyAsFarFromTheLandmarkIsTheMatchsRival) {
 
   // A target whose -y spike is clearly the longer (2.5 against 3.5) gives the match no rival.
   const Mesh clear = two_spikes(2.5, 3.5);
-  const Extremities on_clear = extremities(clear, 5, anchors, reach);
+  const Extremities on_clear = extremities(clear, tip_distances(clear, 5, anchors), reach);
   std::vector<Eigen::Vector3d> clear_images;
   for (VertexHandle v : clear.vertices()) clear_images.push_back(position(clear, v));
   clear_images[0] = clear_images[3] = position(clear, VertexHandle(5)) + Eigen::Vector3d(0.05, 0.0, 0.0);
