@@ -23,8 +23,13 @@ std::string in_quotes(const std::string& name) { return "\"" + name + "\""; }
 // Places anchors one after the other on a working copy of the refined mesh.
 class AnchorPlacer {
  public:
-  AnchorPlacer(Mesh& mesh, const Mesh& input, const PlacementSettings& settings)
-      : mesh_(mesh), input_(input), settings_(settings), diagonal_(bounding_box_diagonal(input)) {
+  AnchorPlacer(Mesh& mesh, const Mesh& input, const PlacementSettings& settings,
+               const ClosestPointIndex* input_surface)
+      : mesh_(mesh),
+        input_(input),
+        settings_(settings),
+        diagonal_(bounding_box_diagonal(input)),
+        surface_(input_surface) {
     XP_ASSERT_MSG(has_provenance(mesh_), "place_anchors needs a mesh with provenance (init_provenance)");
     XP_ASSERT(mesh_.n_vertices() >= input_.n_vertices());
     pieces_.resize(input_.n_faces());
@@ -46,8 +51,7 @@ class AnchorPlacer {
       placed.vertex = mesh_.vertex_handle(vertex->index);
       XP_ASSERT(mesh_.point(placed.vertex) == input_.point(input_.vertex_handle(vertex->index)));
     } else if (const auto* target = std::get_if<AnchorPosition>(&anchor.location)) {
-      if (!index_) index_.emplace(input_);
-      const ClosestPoint nearest = index_->closest(target->point);
+      const ClosestPoint nearest = input_surface().closest(target->point);
       placed.snap_distance = nearest.distance;
       insert(nearest.location.face, nearest.point, placed);
     } else {
@@ -140,12 +144,18 @@ class AnchorPlacer {
     return to_input_point(mesh_, input_, lowest, position(mesh_, v));
   }
 
+  const ClosestPointIndex& input_surface() {
+    if (!surface_) surface_ = &own_surface_.emplace(input_);
+    return *surface_;
+  }
+
   Mesh& mesh_;
   const Mesh& input_;
   const PlacementSettings& settings_;
   const double diagonal_;
   std::vector<std::vector<FaceHandle>> pieces_;  ///< refined faces of each input face
-  std::optional<ClosestPointIndex> index_;       ///< over the input faces; built on the first position
+  const ClosestPointIndex* surface_;  ///< over the input faces: the caller's, own_surface_, or null
+  std::optional<ClosestPointIndex> own_surface_;  ///< built on the first position when the caller gave none
 };
 
 }  // namespace
@@ -160,10 +170,16 @@ std::string snap_warning(const AnchorSpec& anchor, double snap_distance, double 
   return warning.str();
 }
 
+bool has_position_anchor(const AnchorSet& anchors) {
+  return std::any_of(anchors.anchors.begin(), anchors.anchors.end(), [](const AnchorSpec& anchor) {
+    return std::holds_alternative<AnchorPosition>(anchor.location);
+  });
+}
+
 PlacedAnchors place_anchors(Mesh& mesh, const Mesh& input, const AnchorSet& anchors,
-                            const PlacementSettings& settings) {
+                            const PlacementSettings& settings, const ClosestPointIndex* input_surface) {
   Mesh work = mesh;
-  AnchorPlacer placer(work, input, settings);
+  AnchorPlacer placer(work, input, settings, input_surface);
   PlacedAnchors result;
   result.settings = settings;
   result.bbox_diagonal = placer.diagonal();

@@ -18,6 +18,8 @@
 
 namespace xparam {
 
+class ClosestPointIndex;
+
 /// Options of place_anchors. Distances are relative to the input mesh's bounding-box diagonal.
 struct PlacementSettings {
   /// A surface point this close to a vertex (edge) is that vertex (is put on that edge), so
@@ -66,10 +68,18 @@ std::string snap_warning(const AnchorSpec& anchor, double snap_distance, double 
 /// `mesh` is `input` or a refinement of it carrying provenance (init_provenance on a copy of
 /// `input`, then only splits): vertex indices and faces in `anchors` refer to `input`.
 /// Strong guarantee: on an exception `mesh` is unchanged.
+/// Anchors given by position are snapped to `input` through `input_surface`, a nearest-point
+/// index over `input`'s faces, when given (a caller placing anchors on one mesh again and again
+/// builds it once); otherwise one is built here on the first position.
 /// \throw InputError "file:line: anchor "name": ..." for a vertex index or face out of range
 ///   (checked against `input`), invalid barycentrics, a non-finite position, or two anchors
 ///   on one vertex (both named).
 PlacedAnchors place_anchors(Mesh& mesh, const Mesh& input, const AnchorSet& anchors,
-                            const PlacementSettings& settings = {});
+                            const PlacementSettings& settings = {},
+                            const ClosestPointIndex* input_surface = nullptr);
+
+/// Whether any anchor of `anchors` is given by position (place_anchors then needs a nearest-point
+/// index over the input).
+bool has_position_anchor(const AnchorSet& anchors);
 
 }  // namespace xparam

@@ -347,8 +347,10 @@ PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anch
   const AnchorSet matched = match_anchors(source_anchors, target_anchors);
   Mesh source_refined = source;
   Mesh target_refined = target;
-  result.anchors[0] = place_anchors(source_refined, source, source_anchors, settings.placement);
-  result.anchors[1] = place_anchors(target_refined, target, matched, settings.placement);
+  result.anchors[0] = place_anchors(source_refined, source, source_anchors, settings.placement,
+                                    work.input_surface(0, source, source_anchors));
+  result.anchors[1] = place_anchors(target_refined, target, matched, settings.placement,
+                                    work.input_surface(1, target, matched));
   result.seconds.anchors = watch.lap();
 
   const std::array<const Mesh*, 2> refined = {&source_refined, &target_refined};

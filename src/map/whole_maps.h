@@ -5,7 +5,9 @@
 /// base domain, patch maps, composition, optimization on the target, with its later layouts), what
 /// the pair's maps share, and the tests a map on other anchors must pass to replace another.
 
+#include "core/anchor_placement.h"
 #include "core/anchors.h"
+#include "core/closest_point.h"
 #include "core/feature_curves.h"
 #include "core/mesh.h"
 #include "map/map_optimization.h"
@@ -29,6 +31,16 @@ struct PairWork {
   int maps_left = 0;
   bool reached = false;  // a retry was not made for want of maps
   RelaxationMemo relaxations;
+  // Nearest-point indexes over the two input meshes ([0] template, [1] target), built the first
+  // time a map places anchors given by position there: every map places its anchors again.
+  std::array<std::optional<ClosestPointIndex>, 2> input_surfaces;
+
+  // The index over `input` (side 0 or 1) when `anchors` need one, else null.
+  const ClosestPointIndex* input_surface(int side, const Mesh& input, const AnchorSet& anchors) {
+    if (!has_position_anchor(anchors)) return nullptr;
+    if (!input_surfaces[side]) input_surfaces[side].emplace(input);
+    return &*input_surfaces[side];
+  }
 
   bool allows_another_map() {
     if (maps_left <= 0) reached = true;

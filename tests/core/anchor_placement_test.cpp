@@ -344,5 +344,36 @@ TEST(AnchorPlacement, ManyRandomSurfacePointsOnRealMeshes) {
   }
 }
 
+// A caller that places anchors on one mesh again and again gives its nearest-point index; the
+// anchors land where the placer's own index puts them.
+TEST(AnchorPlacement, PositionsSnapThroughTheCallersIndexAsThroughItsOwn) {
+  const Mesh input = load("spot_low_resolution.obj");
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> vertex(0, static_cast<int>(input.n_vertices()) - 1);
+  std::normal_distribution<double> off(0.0, 0.01);
+  AnchorSet set{"spot", {}};
+  for (int i = 0; i < 20; ++i) {
+    const Eigen::Vector3d near = position(input, input.vertex_handle(vertex(random)));
+    set.anchors.push_back({"a" + std::to_string(i),
+                           AnchorPosition{near + Eigen::Vector3d(off(random), off(random), off(random))},
+                           "spot", i + 1});
+  }
+  ASSERT_TRUE(has_position_anchor(set));
+  EXPECT_FALSE(has_position_anchor(one_anchor(AnchorVertex{3})));
+  Mesh own = with_provenance(input);
+  Mesh given = with_provenance(input);
+  const ClosestPointIndex index(input);
+  const PlacedAnchors by_own = place_anchors(own, input, set);
+  const PlacedAnchors by_given = place_anchors(given, input, set, {}, &index);
+  ASSERT_EQ(by_given.anchors.size(), by_own.anchors.size());
+  for (std::size_t i = 0; i < by_own.anchors.size(); ++i) {
+    EXPECT_GT(by_own.anchors[i].snap_distance, 0.0) << i;
+    EXPECT_EQ(by_given.anchors[i].snap_distance, by_own.anchors[i].snap_distance) << i;
+    EXPECT_EQ(by_given.anchors[i].vertex, by_own.anchors[i].vertex) << i;
+    EXPECT_EQ(position(given, by_given.anchors[i].vertex), position(own, by_own.anchors[i].vertex)) << i;
+  }
+  EXPECT_EQ(given.n_vertices(), own.n_vertices());
+}
+
 }  // namespace
 }  // namespace xparam
