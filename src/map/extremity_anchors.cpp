@@ -583,19 +583,19 @@ std::vector<ExtremityAnchor> match_short_tip_rows(
 std::vector<FittedRow> fit_tip_rows(const TipsAndAnchors& source, const std::vector<int>& source_short,
                                     const TipsAndAnchors& target, const std::vector<int>& target_short,
                                     const FirstMap& map, const std::vector<ExtremityAnchor>& matched,
-                                    const std::vector<std::string>& taken) {
+                                    const std::vector<std::string>& taken,
+                                    const ClosestPointIndex& target_surface) {
   std::vector<FittedRow> fitted;
   if (matched.empty()) return fitted;
   const auto source_rows = rows_beside(source, source_short, matched, 0);
   const auto target_rows = rows_beside(target, target_short, matched, 1);
   const auto empty = [](const std::vector<std::pair<double, int>>& row) { return row.empty(); };
-  // Without a row there is nothing to fit, and the trees over the target and the remesh are not built.
+  // Without a row there is nothing to fit, and the tree over the remesh is not built.
   if (std::all_of(source_rows.begin(), source_rows.end(), empty) &&
       std::all_of(target_rows.begin(), target_rows.end(), empty))
     return fitted;
   const double source_scale = std::sqrt(surface_area(source.mesh));
   const double target_scale = std::sqrt(surface_area(target.mesh));
-  const ClosestPointIndex on_target(target.mesh);
   const TipMismatch mismatch(source.mesh, target.mesh, map);
   std::vector<std::string> names = taken;
   for (const ExtremityAnchor& tip : matched) names.push_back(tip.specs[0].name);
@@ -612,7 +612,7 @@ std::vector<FittedRow> fit_tip_rows(const TipsAndAnchors& source, const std::vec
     std::vector<Eigen::Vector3d> starts;
     for (int t : row.target) starts.push_back(at(target.mesh, t));
     const SurfaceFit fit = fit_region(source.mesh, row.source[0], kRowReaches * source.reach * source_scale,
-                                      map, on_target, starts);
+                                      map, target_surface, starts);
     if (!(fit.mean_distance <= kFitFarthest * target_scale)) continue;
     const int n = static_cast<int>(row.source.size());
     const int m = static_cast<int>(row.target.size());

@@ -15,6 +15,7 @@
 /// farthest tip from that landmark is matched by the cell instead (match_extremities_by_cell).
 
 #include "core/anchors.h"
+#include "core/closest_point.h"
 #include "core/mesh.h"
 #include "layout/anchor_voronoi.h"
 
@@ -226,9 +227,11 @@ struct FittedRow {
 /// toe and a target toe are paired when the fit puts them within kFitPairApart and every other
 /// candidate kFitClearance times as far. On the FAUST feet every such pair agrees with the truth.
 /// One FittedRow per row of match_short_tip_rows with a short tip on either mesh whose fit holds.
+/// `target_surface` is a nearest-point index over target.mesh.
 std::vector<FittedRow> fit_tip_rows(const TipsAndAnchors& source, const std::vector<int>& source_short,
                                     const TipsAndAnchors& target, const std::vector<int>& target_short,
                                     const FirstMap& map, const std::vector<ExtremityAnchor>& matched,
-                                    const std::vector<std::string>& taken);
+                                    const std::vector<std::string>& taken,
+                                    const ClosestPointIndex& target_surface);
 
 }  // namespace xparam

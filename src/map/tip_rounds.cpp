@@ -469,9 +469,9 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   std::vector<ExtremityAnchor> tips = with_the_rest(through_map);
   FittedRowsChange fitted_rows;
   if (rows && in.settings.fitted_tip_rows) {
-    std::vector<FittedRow> fitted =
-        fit_tip_rows(source_side, source_short, target_side, target_short, first,
-                     with_cells_and_distances(through_map), anchor_names(on_source));
+    std::vector<FittedRow> fitted = fit_tip_rows(
+        source_side, source_short, target_side, target_short, first, with_cells_and_distances(through_map),
+        anchor_names(on_source), in.work.input_surface(1, in.target));
     for (FittedRow& row : fitted) std::erase_if(row.pairs, pulled_already);
     fitted_rows = fitted_rows_change(tips, fitted);
   }

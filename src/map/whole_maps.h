@@ -31,15 +31,19 @@ struct PairWork {
   int maps_left = 0;
   bool reached = false;  // a retry was not made for want of maps
   RelaxationMemo relaxations;
-  // Nearest-point indexes over the two input meshes ([0] template, [1] target), built the first
-  // time a map places anchors given by position there: every map places its anchors again.
+  // Nearest-point indexes over the two input meshes ([0] template, [1] target), each built the
+  // first time it is needed: every map places its anchors given by position again, and every
+  // round of tips with rows fits the toes onto the target.
   std::array<std::optional<ClosestPointIndex>, 2> input_surfaces;
 
-  // The index over `input` (side 0 or 1) when `anchors` need one, else null.
-  const ClosestPointIndex* input_surface(int side, const Mesh& input, const AnchorSet& anchors) {
-    if (!has_position_anchor(anchors)) return nullptr;
+  // The index over `input`, the pair's template (side 0) or target (side 1).
+  const ClosestPointIndex& input_surface(int side, const Mesh& input) {
     if (!input_surfaces[side]) input_surfaces[side].emplace(input);
-    return &*input_surfaces[side];
+    return *input_surfaces[side];
+  }
+  // The same when placing `anchors` needs it, else null.
+  const ClosestPointIndex* input_surface(int side, const Mesh& input, const AnchorSet& anchors) {
+    return has_position_anchor(anchors) ? &input_surface(side, input) : nullptr;
   }
 
   bool allows_another_map() {

@@ -341,7 +341,7 @@ class TurnedForefoot : public ::testing::Test {
 TEST_F(TurnedForefoot, TheRigidFitPairsEachToeWithItself) {
   const std::vector<FittedRow> rows =
       fit_tip_rows({mesh, none, no_anchors, 0.025}, toes, {target, none, no_anchors, 0.025}, toes,
-                   {images, faces}, {tip}, {"tip 2"});
+                   {images, faces}, {tip}, {"tip 2"}, ClosestPointIndex(target));
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].tip, 0);
   EXPECT_EQ(rows[0].source.front(), 3306);
@@ -382,7 +382,7 @@ TEST_F(TurnedForefoot, AForefootNoRigidMotionLaysOntoTheTargetIsNotPairedByIt) {
   std::vector<Eigen::Vector3d> identity;
   for (VertexHandle v : bent.vertices()) identity.push_back(position(bent, v));
   EXPECT_TRUE(fit_tip_rows({mesh, none, no_anchors, 0.025}, toes, {bent, none, no_anchors, 0.025}, toes,
-                           {identity, faces}, {tip}, {})
+                           {identity, faces}, {tip}, {}, ClosestPointIndex(bent))
                   .empty());
 }
 
