@@ -8,6 +8,7 @@
 #include "core/anchor_placement.h"
 #include "core/anchors.h"
 #include "core/closest_point.h"
+#include "core/errors.h"
 #include "core/feature_curves.h"
 #include "core/mesh.h"
 #include "map/map_optimization.h"
@@ -35,10 +36,15 @@ struct PairWork {
   // first time it is needed: every map places its anchors given by position again, and every
   // round of tips with rows fits the toes onto the target.
   std::array<std::optional<ClosestPointIndex>, 2> input_surfaces;
+  std::array<const Mesh*, 2> surface_meshes{};  // the meshes they were built over
 
   // The index over `input`, the pair's template (side 0) or target (side 1).
   const ClosestPointIndex& input_surface(int side, const Mesh& input) {
-    if (!input_surfaces[side]) input_surfaces[side].emplace(input);
+    if (!input_surfaces[side]) {
+      input_surfaces[side].emplace(input);
+      surface_meshes[side] = &input;
+    }
+    XP_ASSERT_MSG(surface_meshes[side] == &input, "one pair's maps on two different meshes");
     return *input_surfaces[side];
   }
   // The same when placing `anchors` needs it, else null.
