@@ -96,7 +96,7 @@ MapOptimizationResult MapOptimizer::run() {
   refresh_coverage();
   EnergySum energy = total_energy();
   result.energy.push_back(energy.total);
-  wake_first();
+  std::fill(moved_.begin(), moved_.end(), 1);
   double coverage = total_coverage_energy();
   for (int since_refresh = 0, sweeps_left = settings_.max_sweeps; sweeps_left > 0; --sweeps_left) {
     settled_drop_ = settings_.settled_fraction * settings_.tolerance * energy.unfolded() /
@@ -123,7 +123,7 @@ MapOptimizationResult MapOptimizer::run() {
         (since_refresh >= settings_.coverage_refresh || (converged && since_refresh > 1))) {
       since_refresh = 0;
       refresh_coverage();
-      if (settings_.awake_rings < 0) std::fill(moved_.begin(), moved_.end(), 1);
+      std::fill(moved_.begin(), moved_.end(), 1);
       energy = total_energy();
       coverage = total_coverage_energy();
       result.refreshed.push_back(static_cast<int>(result.energy.size()));
@@ -170,22 +170,6 @@ bool MapOptimizer::strictly_folded(int f, int moved, const SurfacePoint& at,
   const Eigen::Vector3d normal = (point(t[1]) - point(t[0])).cross(point(t[2]) - point(t[0]));
   return !(normal.squaredNorm() > 0.0) ||
          reference_.opposes_every_corner(normal, {location(t[0]), location(t[1]), location(t[2])});
-}
-
-void MapOptimizer::wake_first() {
-  if (settings_.awake_rings < 0) {
-    std::fill(moved_.begin(), moved_.end(), 1);
-    return;
-  }
-  std::vector<int> awake;
-  for (const PinnedVertex& pin : pinned_) {
-    if (pin.slack > 0.0) awake.push_back(pin.vertex);
-  }
-  std::sort(awake.begin(), awake.end());
-  awake.erase(std::unique(awake.begin(), awake.end()), awake.end());
-  for (int ring = 0; ring < settings_.awake_rings; ++ring) add_free_ring(awake);
-  std::fill(moved_.begin(), moved_.end(), 0);
-  for (int v : awake) moved_[v] = 1;
 }
 
 bool MapOptimizer::sweep() {

@@ -91,14 +91,6 @@ struct MapOptimizationSettings {
   /// same folds, and the realistic set's map optimization took 29 s instead of 48; 1 changed
   /// TOSCA centaur0/1's kept map (E_L2 1.08 -> 1.17).
   double settled_fraction = 0.3;
-  /// -1: every vertex starts awake, and each coverage refresh wakes every vertex again. n >= 0:
-  /// only the vertices pinned with slack and n rings about them start awake, and the refreshes
-  /// wake none; the sweeps go on from wherever vertices move. For a map already optimized that
-  /// is pulled onto tips (map/tip_rounds.cpp): the rest of it has converged. Measured on the
-  /// realistic set (session 39): 3 rings against -1 changed 5 maps, none worse by E_L2, the
-  /// worse hand of FAUST 000/030 [29 anthropometric] 0.164 -> 0.131% of sqrt(area), and the
-  /// pulls took a fifth less time (the 50k benchmark's 0.65 -> 0.25 s).
-  int awake_rings = -1;
 };
 
 /// A template vertex whose image is tied to a target landmark.

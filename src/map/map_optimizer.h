@@ -247,8 +247,6 @@ class MapOptimizer {
 
   // Adds to `vertices` the free vertices that share a face with one of them.
   void add_free_ring(std::vector<int>& vertices) const;
-  // Marks the vertices the first sweep starts from (MapOptimizationSettings::awake_rings).
-  void wake_first();
 
   // Where a vertex's image is.
   struct Image {

@@ -166,13 +166,6 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
 // through a whole map), and most vertices are settled from the start, so the sweeps are cheap.
 constexpr double kPullTolerance = 1e-6;
 
-// The rings about each tip a pull starts awake (MapOptimizationSettings::awake_rings): the map
-// before it has converged, so the sweeps start where the tips are dragged and go on as far as
-// anything moves. Waking every vertex first, and again at each coverage refresh, kept nearly all
-// of them moving by tiny steps (FAUST 000 against 010 refined to 50k vertices: 16 sweeps, 6778 of
-// 6890 vertices moved, the energy lowered by 0.02%).
-constexpr int kPullAwakeRings = 3;
-
 // `current` with its map optimized again from where it is, each of `tips` (every one carried by
 // it within the tip reach) pulled onto its partner and held within kTipSlack of the reach there,
 // when that is better than `current` (better_with_tips); nothing otherwise. No new layout: the
@@ -200,7 +193,6 @@ std::optional<AnchoredMap> pulled_onto_tips(const PairInputs& in, const Anchored
   const std::vector<std::array<int, 3>> faces = triangles_of(in.source);
   MapOptimizationSettings pulling = settings.map_optimization;
   pulling.tolerance = kPullTolerance;
-  pulling.awake_rings = kPullAwakeRings;
   const MapOptimizationResult pulled =
       optimize_map(in.source, faces, in.target, current.map.correspondence, pinned, pulling);
   seconds.optimize_map += watch.lap();
