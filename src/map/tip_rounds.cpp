@@ -365,14 +365,15 @@ std::optional<AnchoredMap> with_fitted_rows(const PairInputs& in, const Anchored
   return no_worse ? std::move(fitted) : std::move(won);
 }
 
-// What the rounds of tips on one map look for tips with, [0] on the template and [1] on the
-// target: the anchors' vertices in the template's order, the edge-path distances from the root (the
-// template anchor nearest the anchors' centroid, and its namesake on the target) and from the
-// anchors, and the tip reach in each mesh's units.
+// What the rounds of tips on one map find tips among, [0] on the template and [1] on the target:
+// the anchors' vertices in the template's order, the extremities at the tip reach, and the short
+// tips (at kShortTipReach of it) the toes' rows are made of. Found by edge-path distances from the
+// root (the template anchor nearest the anchors' centroid, and its namesake on the target) and
+// from the anchors, the same for both rounds.
 struct TipSearch {
   std::array<std::vector<int>, 2> anchors;
-  std::array<TipDistances, 2> distances;
-  std::array<double, 2> reach{};
+  std::array<Extremities, 2> ends;
+  std::array<std::vector<int>, 2> short_tips;  // empty unless PairSettings::tip_rows
 };
 
 // The search on `current`'s anchors; none when the two meshes' anchors are not the same names.
@@ -400,8 +401,12 @@ std::optional<TipSearch> tip_search(const PairInputs& in, const AnchoredMap& cur
   search.anchors = {input_vertices(in.source, on_source), input_vertices(in.target, target_in_source_order)};
   const std::array<const Mesh*, 2> meshes = {&in.source, &in.target};
   const auto on = [&](int side) {
-    search.distances[side] = tip_distances(*meshes[side], search.anchors[side][root], search.anchors[side]);
-    search.reach[side] = in.settings.tip_reach * std::sqrt(surface_area(*meshes[side]));
+    const Mesh& mesh = *meshes[side];
+    const TipDistances distances = tip_distances(mesh, search.anchors[side][root], search.anchors[side]);
+    const double reach = in.settings.tip_reach * std::sqrt(surface_area(mesh));
+    search.ends[side] = extremities(mesh, distances, reach);
+    if (in.settings.tip_rows)
+      search.short_tips[side] = extremities(mesh, distances, kShortTipReach * reach).tips;
   };
   tbb::parallel_invoke([&] { on(0); }, [&] { on(1); });
   return search;
@@ -416,8 +421,8 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   const PlacedAnchors& on_source = current.map.anchors[0];
   const std::vector<int>& source_anchors = search.anchors[0];
   const std::vector<int>& target_anchors = search.anchors[1];
-  const Extremities on_source_ends = extremities(in.source, search.distances[0], search.reach[0]);
-  const Extremities on_target_ends = extremities(in.target, search.distances[1], search.reach[1]);
+  const Extremities& on_source_ends = search.ends[0];
+  const Extremities& on_target_ends = search.ends[1];
   std::vector<Eigen::Vector3d> images(current.map.remesh_vertices.rows());
   for (int v = 0; v < static_cast<int>(images.size()); ++v)
     images[v] = current.map.remesh_vertices.row(v).transpose();
@@ -440,12 +445,9 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   std::erase_if(through_map, pulled_already);
   const TipsAndAnchors source_side{in.source, on_source_ends, source_anchors, in.settings.tip_reach};
   const TipsAndAnchors target_side{in.target, on_target_ends, target_anchors, in.settings.tip_reach};
-  const auto short_tips = [&](const Mesh& mesh, int side) {
-    return rows ? extremities(mesh, search.distances[side], kShortTipReach * search.reach[side]).tips
-                : std::vector<int>{};
-  };
-  const std::vector<int> source_short = short_tips(in.source, 0);
-  const std::vector<int> target_short = short_tips(in.target, 1);
+  const std::vector<int> no_tips;
+  const std::vector<int>& source_short = rows ? search.short_tips[0] : no_tips;
+  const std::vector<int>& target_short = rows ? search.short_tips[1] : no_tips;
   // Tips matched through the map and those matched by cell and by distances on top of them.
   const auto with_cells_and_distances = [&](std::vector<ExtremityAnchor> tips) {
     for (ExtremityAnchor& tip :
