@@ -4,28 +4,10 @@
 
 #include <Eigen/Geometry>
 
-#include <array>
 #include <cmath>
 
 namespace xparam {
 namespace {
-
-struct FaceFrame {
-  std::array<VertexHandle, 3> corners;
-  std::array<Eigen::Vector3d, 3> points;
-  Eigen::Vector3d normal;  // unit; not finite for a degenerate face
-};
-
-FaceFrame frame_of(const Mesh& mesh, FaceHandle face) {
-  FaceFrame frame;
-  int k = 0;
-  for (VertexHandle v : mesh.fv_range(face)) {
-    frame.corners[k] = v;
-    frame.points[k++] = position(mesh, v);
-  }
-  frame.normal = (frame.points[1] - frame.points[0]).cross(frame.points[2] - frame.points[0]).normalized();
-  return frame;
-}
 
 // Barycentrics clamped into [0, 1] and summing to 1 again after rounding.
 Eigen::Vector3d clamped(Eigen::Vector3d bary) {
@@ -35,19 +17,44 @@ Eigen::Vector3d clamped(Eigen::Vector3d bary) {
 
 }  // namespace
 
-std::optional<SurfacePoint> walk_on_surface(const Mesh& mesh, const SurfacePoint& start,
-                                            const Eigen::Vector3d& step, int max_faces) {
-  XP_ASSERT_MSG(start.face >= 0 && start.face < static_cast<int>(mesh.n_faces()), "face " << start.face);
-  FaceHandle face = mesh.face_handle(start.face);
-  FaceFrame frame = frame_of(mesh, face);
+SurfaceWalker::SurfaceWalker(const Mesh& mesh) : mesh_(&mesh), corners_(triangles_of(mesh)) {
+  across_.assign(corners_.size(), {-1, -1, -1});
+  normals_.reserve(corners_.size());
+  for (FaceHandle face : mesh.faces()) {
+    const std::array<int, 3>& t = corners_[face.idx()];
+    const Eigen::Vector3d a = position(mesh, VertexHandle(t[0]));
+    normals_.push_back(
+        (position(mesh, VertexHandle(t[1])) - a).cross(position(mesh, VertexHandle(t[2])) - a).normalized());
+    for (HalfedgeHandle side : mesh.fh_range(face)) {
+      const FaceHandle other = mesh.opposite_face_handle(side);
+      if (!other.is_valid()) continue;
+      // The corner opposite the side is the one it does not start or end at.
+      const int from = mesh.from_vertex_handle(side).idx();
+      const int to = mesh.to_vertex_handle(side).idx();
+      for (int k = 0; k < 3; ++k) {
+        if (t[k] != from && t[k] != to) across_[face.idx()][k] = other.idx();
+      }
+    }
+  }
+}
+
+std::optional<SurfacePoint> SurfaceWalker::walk(const SurfacePoint& start, const Eigen::Vector3d& step,
+                                                int max_faces) const {
+  XP_ASSERT_MSG(start.face >= 0 && start.face < static_cast<int>(corners_.size()), "face " << start.face);
+  int face = start.face;
+  std::array<Eigen::Vector3d, 3> points;
+  const auto enter = [&](int f) {
+    for (int c = 0; c < 3; ++c) points[c] = position(*mesh_, VertexHandle(corners_[f][c]));
+  };
+  enter(face);
   Eigen::Vector3d bary = start.bary;
-  Eigen::Vector3d rest = step - frame.normal * frame.normal.dot(step);
+  Eigen::Vector3d rest = step - normals_[face] * normals_[face].dot(step);
   for (int crossed = 0; crossed <= max_faces; ++crossed) {
-    if (!frame.normal.allFinite()) return std::nullopt;
+    const Eigen::Vector3d& normal = normals_[face];
+    if (!normal.allFinite()) return std::nullopt;
     // The step's change of barycentrics in this face (the coordinates of a vector sum to 0).
     const Eigen::Vector3d delta =
-        barycentric(frame.points[0] + rest, frame.points[0], frame.points[1], frame.points[2]) -
-        Eigen::Vector3d(1.0, 0.0, 0.0);
+        barycentric(points[0] + rest, points[0], points[1], points[2]) - Eigen::Vector3d(1.0, 0.0, 0.0);
     double fraction = 1.0;  // of `rest` used inside this face
     int exit = -1;          // the corner opposite the edge crossed
     for (int i = 0; i < 3; ++i) {
@@ -58,7 +65,7 @@ std::optional<SurfacePoint> walk_on_surface(const Mesh& mesh, const SurfacePoint
         exit = i;
       }
     }
-    if (exit < 0) return SurfacePoint{face.idx(), clamped(bary + delta)};
+    if (exit < 0) return SurfacePoint{face, clamped(bary + delta)};
     bary += fraction * delta;
     bary[exit] = 0.0;
     bary = clamped(bary);
@@ -66,23 +73,24 @@ std::optional<SurfacePoint> walk_on_surface(const Mesh& mesh, const SurfacePoint
 
     const int j = (exit + 1) % 3;
     const int k = (exit + 2) % 3;
-    const HalfedgeHandle across = mesh.opposite_halfedge_handle(mesh.find_halfedge(frame.corners[j], frame.corners[k]));
-    const FaceHandle next = mesh.face_handle(across);
-    if (!next.is_valid()) return std::nullopt;
+    const int next = across_[face][exit];
+    if (next < 0) return std::nullopt;
     // Unfold about the edge: keep the components along the edge and away from it.
-    const Eigen::Vector3d edge = (frame.points[k] - frame.points[j]).normalized();
-    const Eigen::Vector3d out_of_face = edge.cross(frame.normal);
+    const Eigen::Vector3d edge = (points[k] - points[j]).normalized();
+    const Eigen::Vector3d out_of_face = edge.cross(normal);
     const double along = rest.dot(edge);
     const double away = rest.dot(out_of_face);
+    const int vertex_j = corners_[face][j];
+    const int vertex_k = corners_[face][k];
     const double on_j = bary[j];
     const double on_k = bary[k];
     face = next;
-    frame = frame_of(mesh, face);
-    rest = along * edge + away * edge.cross(frame.normal);
+    enter(face);
+    rest = along * edge + away * edge.cross(normals_[face]);
     bary.setZero();
     for (int c = 0; c < 3; ++c) {
-      if (frame.corners[c] == mesh.from_vertex_handle(across)) bary[c] = on_k;
-      if (frame.corners[c] == mesh.to_vertex_handle(across)) bary[c] = on_j;
+      if (corners_[face][c] == vertex_k) bary[c] = on_k;
+      if (corners_[face][c] == vertex_j) bary[c] = on_j;
     }
   }
   return std::nullopt;

@@ -1,7 +1,6 @@
 // The moves of a few vertices at once outside the sweeps of the map optimization
 // (map/map_optimizer.h): opening the folds the sweeps leave, and the anchors inside faces.
 
-#include "core/surface_walk.h"
 #include "map/map_optimizer.h"
 
 #include <Eigen/Geometry>
@@ -183,7 +182,7 @@ bool MapOptimizer::drag(const std::vector<int>& vertices, const Eigen::Vector3d&
   const FoldTally before = tally(around);
   std::vector<Image> start, dragged;
   for (int v : vertices) {
-    const std::optional<SurfacePoint> there = walk_on_surface(target_, locations_[v], step);
+    const std::optional<SurfacePoint> there = walker_.walk(locations_[v], step);
     if (!there) return false;
     start.push_back(image_of(v));
     dragged.push_back({*there, position(target_, *there), reference_.interpolated_normal(*there)});
@@ -278,7 +277,7 @@ bool MapOptimizer::lay_anchor_face_again(int f, const std::vector<int>& anchor,
         for (std::size_t m = 0; m < moving.size(); ++m) {
           const Eigen::Vector2d offset = rotation * (flat(moving[m]) - landmark_flat);
           const std::optional<SurfacePoint> there =
-              walk_on_surface(target_, on_landmark, offset.x() * tangent.u + offset.y() * tangent.v);
+              walker_.walk(on_landmark, offset.x() * tangent.u + offset.y() * tangent.v);
           if (!there) {
             within = false;
             break;

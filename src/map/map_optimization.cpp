@@ -2,7 +2,6 @@
 
 #include "core/errors.h"
 #include "core/stopwatch.h"
-#include "core/surface_walk.h"
 #include "map/foldover_free_energy.h"
 #include "map/map_optimizer.h"
 #include "map/remesh_coverage.h"
@@ -57,6 +56,7 @@ MapOptimizer::MapOptimizer(const Mesh& source, const std::vector<std::array<int,
                            const std::vector<PinnedVertex>& pinned, const MapOptimizationSettings& settings)
     : faces_(faces),
       target_(target),
+      walker_(target),
       reference_(target),
       settings_(settings),
       locations_(std::move(locations)) {
@@ -549,7 +549,7 @@ bool MapOptimizer::move_vertex(int v) {
   const auto next_fraction = [](double fraction) { return fraction > 1.0 ? 1.0 : 0.5 * fraction; };
   double fraction = settings_.over_relaxation;
   for (int tries = 0; tries < 13; ++tries, fraction = next_fraction(fraction)) {
-    const std::optional<SurfacePoint> there = walk_on_surface(target_, here, fraction * step);
+    const std::optional<SurfacePoint> there = walker_.walk(here, fraction * step);
     if (!there) continue;
     const Eigen::Vector3d y = position(target_, *there);
     if (!within_slack(v, y)) continue;

@@ -8,6 +8,7 @@
 #include "core/closest_point.h"
 #include "core/mesh.h"
 #include "core/surface_point.h"
+#include "core/surface_walk.h"
 #include "map/map_optimization.h"
 #include "map/remesh_quality.h"
 
@@ -293,6 +294,7 @@ class MapOptimizer {
 
   const std::vector<std::array<int, 3>>& faces_;
   const Mesh& target_;
+  const SurfaceWalker walker_;  // over target_
   const RemeshReference reference_;
   const MapOptimizationSettings settings_;
   std::vector<SurfacePoint> locations_;

@@ -48,7 +48,7 @@ TEST(SurfaceWalk, OnAPlaneItEndsWhereTheStepDoes) {
   const Mesh plane = bent_grid(10, 0.0);
   const SurfacePoint start{44, Eigen::Vector3d(0.2, 0.3, 0.5)};
   const Eigen::Vector3d step(0.31, -0.17, 0.0);
-  const std::optional<SurfacePoint> end = walk_on_surface(plane, start, step);
+  const std::optional<SurfacePoint> end = SurfaceWalker(plane).walk(start, step);
   ASSERT_TRUE(end);
   EXPECT_LT((position(plane, *end) - (position(plane, start) + step)).norm(), 1e-12);
   EXPECT_GE(end->bary.minCoeff(), 0.0);
@@ -60,7 +60,7 @@ TEST(SurfaceWalk, AcrossACreaseItKeepsTheLengthAndTheAngleToTheCrease) {
   const Mesh bent = bent_grid(8, fold);
   const int v = 4 * 9 + 1;  // vertex (1, 4): (0.125, 0.5, 0) on the flat half
   // Walk 0.6 along x and 0.1 along y: 0.375 on the flat half, the rest up the tilted one.
-  const std::optional<SurfacePoint> end = walk_on_surface(bent, at_vertex(bent, v), {0.6, 0.1, 0.0});
+  const std::optional<SurfacePoint> end = SurfaceWalker(bent).walk(at_vertex(bent, v), {0.6, 0.1, 0.0});
   ASSERT_TRUE(end);
   const double up = 0.6 - 0.375;  // the x part of the step left after the crease
   const Eigen::Vector3d expected(0.5 + up * std::cos(fold), 0.6, up * std::sin(fold));
@@ -70,17 +70,18 @@ TEST(SurfaceWalk, AcrossACreaseItKeepsTheLengthAndTheAngleToTheCrease) {
 TEST(SurfaceWalk, ThroughAVertexItGoesOn) {
   const Mesh plane = bent_grid(4, 0.0);
   const int v = 2 * 5 + 2;  // the centre vertex (0.5, 0.5)
-  const std::optional<SurfacePoint> end = walk_on_surface(plane, at_vertex(plane, 0), {0.7, 0.7, 0.0});
+  const std::optional<SurfacePoint> end = SurfaceWalker(plane).walk(at_vertex(plane, 0), {0.7, 0.7, 0.0});
   ASSERT_TRUE(end);
   EXPECT_LT((position(plane, *end) - Eigen::Vector3d(0.7, 0.7, 0.0)).norm(), 1e-12);
-  const std::optional<SurfacePoint> from_centre = walk_on_surface(plane, at_vertex(plane, v), {-0.3, 0.1, 0.0});
+  const std::optional<SurfacePoint> from_centre =
+      SurfaceWalker(plane).walk(at_vertex(plane, v), {-0.3, 0.1, 0.0});
   ASSERT_TRUE(from_centre);
   EXPECT_LT((position(plane, *from_centre) - Eigen::Vector3d(0.2, 0.6, 0.0)).norm(), 1e-12);
 }
 
 TEST(SurfaceWalk, StopsAtTheBoundary) {
   const Mesh plane = bent_grid(4, 0.0);
-  EXPECT_FALSE(walk_on_surface(plane, at_vertex(plane, 6), {2.0, 0.0, 0.0}));
+  EXPECT_FALSE(SurfaceWalker(plane).walk(at_vertex(plane, 6), {2.0, 0.0, 0.0}));
 }
 
 }  // namespace

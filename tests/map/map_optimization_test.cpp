@@ -97,6 +97,7 @@ struct SimilarityCase {
     start = truth;
     std::vector<bool> is_pinned(n, false);
     for (const PinnedVertex& pin : pinned) is_pinned[pin.vertex] = true;
+    const SurfaceWalker walker(target);
     for (int v = 0; v < n; ++v) {
       const double a = angle(random);
       if (is_pinned[v]) continue;
@@ -104,7 +105,7 @@ struct SimilarityCase {
       const Eigen::Vector3d u = normal.unitOrthogonal();
       const Eigen::Vector3d w = normal.normalized().cross(u);
       const Eigen::Vector3d step = amplitude * mean_edge * (std::cos(a) * u + std::sin(a) * w);
-      start[v] = walk_on_surface(target, truth[v], step).value();
+      start[v] = walker.walk(truth[v], step).value();
     }
   }
 
@@ -202,9 +203,10 @@ TEST(MapOptimization, AnchorsWithSlackMoveTowardTheMapButStayWithinIt) {
   // Landmarks placed off the truth, as on a scan: each pin's landmark and start are 0.3 edges away.
   std::vector<PinnedVertex> noisy = pair.pinned;
   for (PinnedVertex& pin : noisy) {
-    const SurfacePoint off = walk_on_surface(pair.target, pair.truth[pin.vertex],
-                                             Eigen::Vector3d(1, 1, 1).normalized() * 0.3 * pair.mean_edge)
-                                 .value();
+    const SurfacePoint off =
+        SurfaceWalker(pair.target)
+            .walk(pair.truth[pin.vertex], Eigen::Vector3d(1, 1, 1).normalized() * 0.3 * pair.mean_edge)
+            .value();
     pair.start[pin.vertex] = off;
     pin.landmark = position(pair.target, off);
   }
@@ -243,9 +245,10 @@ TEST(MapOptimization, AVertexAnchorBeyondItsSlackIsDraggedWithinIt) {
   const int tip = 333;
   const Eigen::Vector3d normal =
       to_eigen(pair.target.calc_face_normal(pair.target.face_handle(pair.truth[tip].face)));
-  const Eigen::Vector3d landmark = position(
-      pair.target,
-      walk_on_surface(pair.target, pair.truth[tip], 1.5 * pair.mean_edge * normal.unitOrthogonal()).value());
+  const Eigen::Vector3d landmark =
+      position(pair.target, SurfaceWalker(pair.target)
+                                .walk(pair.truth[tip], 1.5 * pair.mean_edge * normal.unitOrthogonal())
+                                .value());
   const double slack = 0.5 * pair.mean_edge;
   std::vector<PinnedVertex> pinned = pair.pinned;
   pinned.push_back({tip, landmark, slack, static_cast<int>(pinned.size()), 1.0});
@@ -270,8 +273,9 @@ TEST(MapOptimization, UnfoldsAStartThatFolds) {
   for (int v : {101, 333, 620}) {
     const Eigen::Vector3d normal =
         to_eigen(pair.target.calc_face_normal(pair.target.face_handle(pair.truth[v].face)));
-    pair.start[v] =
-        walk_on_surface(pair.target, pair.truth[v], 2.5 * pair.mean_edge * normal.unitOrthogonal()).value();
+    pair.start[v] = SurfaceWalker(pair.target)
+                        .walk(pair.truth[v], 2.5 * pair.mean_edge * normal.unitOrthogonal())
+                        .value();
   }
   const int folded_at_start = folded(pair.faces, pair.start, pair.target);
   ASSERT_GT(folded_at_start, 0);
@@ -298,9 +302,9 @@ TEST(MapOptimization, AFoldLeftAfterTheSweepsIsOpenedTowardsItsRingsCentroid) {
   const int thrown = 333;
   const Eigen::Vector3d normal =
       to_eigen(pair.target.calc_face_normal(pair.target.face_handle(pair.truth[thrown].face)));
-  pair.start[thrown] =
-      walk_on_surface(pair.target, pair.truth[thrown], 2.5 * pair.mean_edge * normal.unitOrthogonal())
-          .value();
+  pair.start[thrown] = SurfaceWalker(pair.target)
+                           .walk(pair.truth[thrown], 2.5 * pair.mean_edge * normal.unitOrthogonal())
+                           .value();
   ASSERT_GT(folded(pair.faces, pair.start, pair.target), 0);
   MapOptimizationSettings no_sweeps;
   no_sweeps.max_sweeps = 0;
@@ -396,7 +400,8 @@ TEST(MapOptimization, AnInFaceAnchorsPointIsBroughtOntoItsLandmark) {
   for (int v : corners) {
     for (VertexHandle u : pair.source.vv_range(pair.source.vertex_handle(v))) slid.push_back(u.idx());
   }
-  for (int v : slid) pair.start[v] = walk_on_surface(pair.target, pair.truth[v], slide).value();
+  const SurfaceWalker walker(pair.target);
+  for (int v : slid) pair.start[v] = walker.walk(pair.truth[v], slide).value();
   const auto landmark_miss = [&](const std::vector<Eigen::Vector3d>& positions) {
     return (point_in_face(positions, corners, bary) - landmark).norm();
   };
@@ -425,7 +430,7 @@ TEST(MapOptimization, AnInFaceAnchorWithSlackStaysWithinItNearerTheTruth) {
   ASSERT_NEAR((position(pair.target, on_truth) - truth).norm(), 0.0, 1e-12);
   const Eigen::Vector3d off = position(
       pair.target,
-      walk_on_surface(pair.target, on_truth, 0.3 * pair.mean_edge * normal.unitOrthogonal()).value());
+      SurfaceWalker(pair.target).walk(on_truth, 0.3 * pair.mean_edge * normal.unitOrthogonal()).value());
   for (std::size_t k = pinned.size() - 3; k < pinned.size(); ++k) pinned[k].landmark = off;
   const auto point_of = [&](const MapOptimizationResult& result) {
     return point_in_face(result.positions, corners, bary);
