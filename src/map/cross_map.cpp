@@ -144,9 +144,14 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
   for (int side = 0; side < 2; ++side) m.mean_value[side].resize(layout.patches.size());
   if (settings.relax) {
     const int n = static_cast<int>(layout.patches.size());
-    auto relax_own = [&m, &memo](int side, int p, const MapRelaxationSettings& how) {
+    std::array<std::vector<int>, 2> iterations = {std::vector<int>(n, 0), std::vector<int>(n, 0)};
+    auto relax_own = [&m, &memo, &settings, &iterations](int side, int p, MapRelaxationSettings how) {
+      if (side == 1 &&
+          m.sides[1].patches[p].positions.size() > kFinerTargetRatio * m.sides[0].patches[p].positions.size())
+        how.relative_tolerance = settings.finer_target_tolerance;
       MapRelaxationResult own =
           memo.relax_patch_parameterization(m.sides[side].patches[p], m.params[side][p].uv, how);
+      iterations[side][p] += own.iterations;
       if (own.iterations == 0) return;
       m.mean_value[side][p] = std::move(m.params[side][p].uv);
       m.params[side][p].uv = std::move(own.uv);
@@ -158,6 +163,9 @@ CrossMap::CrossMap(const Layout& layout, const std::array<const Mesh*, 2>& input
       const bool relaxed[2] = {!m.mean_value[0][p].empty(), !m.mean_value[1][p].empty()};
       if (relaxed[0] != relaxed[1]) relax_own(relaxed[0] ? 1 : 0, p, partner);
     });
+    for (int side = 0; side < 2; ++side) {
+      for (int count : iterations[side]) m.relaxation.parameterization_iterations[side] += count;
+    }
   }
 
   // Per patch: a locator over the target's domain, and the template patch carried into that

@@ -1,9 +1,11 @@
 #include "map/pair_mapping.h"
 
+#include "core/midpoint_subdivision.h"
 #include "core/provenance.h"
 #include "io/anchor_reader.h"
 #include "io/curve_reader.h"
 #include "io/mesh_loader.h"
+#include "support/prism_meshes.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
@@ -58,6 +60,50 @@ TEST(PairMapping, RigidlyMovedScaledCopyHasNoStretch) {
   EXPECT_NEAR(map.distortion.all.e_ang, 0.0, 1e-6);
   EXPECT_TRUE(map.quality.flipped_faces.empty());
   EXPECT_NEAR(map.quality.area_ratio, 1.0, 1e-6);
+}
+
+// A target over four times finer than the template in a patch relaxes its squeezed parameterization
+// only to a relative tolerance of 1e-3 (CrossMapSettings::finer_target_tolerance), the template's
+// still to 1e-4. A flat tube anchored about its base against itself subdivided twice and widening
+// to its tip: the target's side takes fewer iterations, the template's as many, and the layout's
+// relaxed map stays fold-free and no more stretched than with the target's chart relaxed to 1e-4.
+TEST(PairMapping, AFinerTargetsSqueezedChartStopsEarlierWithoutAWorseMap) {
+  // A finger: a flat 12-sided tube (2 by 1) of length 8, anchored only about its base (the bottom
+  // cap's centre and three vertices of the ring at height 1), so its length lies in one patch.
+  std::vector<double> heights;
+  for (int ring = 0; ring <= 16; ++ring) heights.push_back(0.5 * ring);
+  std::vector<Eigen::Vector2d> section = test::regular_polygon(12, 1.0);
+  for (Eigen::Vector2d& p : section) p.x() *= 2.0;
+  Mesh tube = test::prism(section, heights);
+  init_provenance(tube);
+  AnchorSet anchors;
+  anchors.source = "tube anchors";
+  const int bottom_centre = 12 * 17;
+  for (const auto& [name, vertex] : std::vector<std::pair<std::string, int>>{
+           {"base", bottom_centre}, {"ring 0", 24}, {"ring 4", 28}, {"ring 8", 32}})
+    anchors.anchors.push_back({name, AnchorVertex{vertex}, "", 0});
+  // The target: the same tube subdivided twice, half as wide again at its tip, so that the map is
+  // no isometry and the relaxed charts are kept.
+  Mesh finer = subdivide_midpoint(subdivide_midpoint(tube));
+  for (VertexHandle v : finer.vertices()) {
+    const Eigen::Vector3d p = position(finer, v);
+    const double widening = 1.0 + p.z() / 16.0;
+    finer.set_point(v, to_point(Eigen::Vector3d(widening * p.x(), widening * p.y(), p.z())));
+  }
+  // The layout's relaxed map alone: one layout, no tips, no map optimization.
+  PairSettings settings;
+  settings.max_maps = 1;
+  settings.optimize_map = false;
+  PairSettings exact = settings;
+  exact.cross_map.finer_target_tolerance = exact.cross_map.squeezed.relative_tolerance;
+  const PairMapping early = map_pair(tube, anchors, finer, anchors, {}, settings);
+  const PairMapping late = map_pair(tube, anchors, finer, anchors, {}, exact);
+  ASSERT_EQ(early.relaxation.parameterizations[1], 1);  // the tube's patch, on the target
+  EXPECT_LT(early.relaxation.parameterization_iterations[1], late.relaxation.parameterization_iterations[1]);
+  EXPECT_EQ(early.relaxation.parameterization_iterations[0], late.relaxation.parameterization_iterations[0]);
+  EXPECT_EQ(early.quality.strictly_folded_faces, 0);
+  EXPECT_TRUE(early.quality.flipped_faces.empty());
+  EXPECT_LE(early.distortion.all.e_l2, 1.01 * late.distortion.all.e_l2);  // measured 1.079 and 1.095
 }
 
 // The 41 landmarks of human.anchors.json: the 29 anthropometric ones leave fingers and toes as
