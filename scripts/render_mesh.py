@@ -19,9 +19,18 @@ Shading: z-buffered flat Lambert with a headlight plus ambient, in the face colo
 or --flat-color (default 200,200,200).  Back faces are drawn darker and bluish so
 folded triangles stand out.  --edges overlays a thin dark wireframe.
 
+--distance-to MESH [--distance-scale D]: colour each drawn face by how far its
+centroid lies from MESH, blue at 0 to red at D or more (default: a hundredth of the
+first mesh's bounding-box diagonal).  Rendering a target with --distance-to the
+pair's remesh.obj shows what the remesh leaves out: a finger it cuts off is red,
+though the remesh's own stretch colours cannot show a finger it does not have.
+
 Example (remeshed hand beside the target's hand):
   python3 scripts/render_mesh.py hands.png out/remesh.obj target.obj \\
       --focus -0.8,1.33,-0.05 --radius 0.1 --edges
+Example (the target's hand coloured by its distance to the remesh, red from 5 mm):
+  python3 scripts/render_mesh.py gap.png target.obj --distance-to out/remesh.obj \\
+      --distance-scale 0.005 --focus -0.8,1.33,-0.05 --radius 0.1 --edges
 """
 import argparse, math, os, struct, sys, zlib
 
@@ -130,6 +139,71 @@ def load_mesh(path):
     return verts, faces, colors
 
 
+def point_triangle_distance(p, a, b, c):
+    """Distance from point p to triangle abc (Ericson's closest-point regions)."""
+    sub = lambda u, v: (u[0] - v[0], u[1] - v[1], u[2] - v[2])
+    dot = lambda u, v: u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+    ab, ac, ap = sub(b, a), sub(c, a), sub(p, a)
+    d1, d2 = dot(ab, ap), dot(ac, ap)
+    if d1 <= 0 and d2 <= 0:
+        return math.dist(p, a)
+    bp = sub(p, b)
+    d3, d4 = dot(ab, bp), dot(ac, bp)
+    if d3 >= 0 and d4 <= d3:
+        return math.dist(p, b)
+    cp = sub(p, c)
+    d5, d6 = dot(ab, cp), dot(ac, cp)
+    if d6 >= 0 and d5 <= d6:
+        return math.dist(p, c)
+    vc, vb, va = d1 * d4 - d3 * d2, d5 * d2 - d1 * d6, d3 * d6 - d5 * d4
+    along = lambda u, e, t: tuple(u[k] + t * e[k] for k in range(3))
+    if vc <= 0 and d1 >= 0 and d3 <= 0:
+        return math.dist(p, along(a, ab, d1 / (d1 - d3)))
+    if vb <= 0 and d2 >= 0 and d6 <= 0:
+        return math.dist(p, along(a, ac, d2 / (d2 - d6)))
+    if va <= 0 and d4 - d3 >= 0 and d5 - d6 >= 0:
+        return math.dist(p, along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))))
+    den = va + vb + vc
+    if den == 0:  # degenerate triangle: its edges are the nearest it has
+        return min(math.dist(p, a), math.dist(p, b), math.dist(p, c))
+    v, w = vb / den, vc / den
+    return math.dist(p, tuple(a[k] + v * ab[k] + w * ac[k] for k in range(3)))
+
+
+def distance_colors(verts, faces, other, focus, reach, scale):
+    """Per face of (verts, faces) whose centroid lies within `reach` of `focus`: blue to red by
+    the centroid's distance to mesh `other` ((verts, faces, _)), red from `scale` on; grey beyond
+    `reach` (not drawn).  Only `other`'s triangles within `scale` of a centroid are tested,
+    through a grid of cells `scale` wide."""
+    overts, ofaces, _ = other
+    cells = {}
+    for k, tri in enumerate(ofaces):
+        pts = [overts[i] for i in tri]
+        lo = [min(q[j] for q in pts) for j in range(3)]
+        hi = [max(q[j] for q in pts) for j in range(3)]
+        if any(lo[j] > focus[j] + reach + scale or hi[j] < focus[j] - reach - scale for j in range(3)):
+            continue
+        c0 = [math.floor(v / scale) for v in lo]
+        c1 = [math.floor(v / scale) for v in hi]
+        for x in range(c0[0], c1[0] + 1):
+            for y in range(c0[1], c1[1] + 1):
+                for z in range(c0[2], c1[2] + 1):
+                    cells.setdefault((x, y, z), []).append(k)
+    colors = []
+    for tri in faces:
+        centroid = tuple(sum(verts[i][j] for i in tri) / 3.0 for j in range(3))
+        if math.dist(centroid, focus) > reach:
+            colors.append((200, 200, 200))
+            continue
+        cx, cy, cz = (math.floor(v / scale) for v in centroid)
+        near = {k for x in (cx - 1, cx, cx + 1) for y in (cy - 1, cy, cy + 1) for z in (cz - 1, cz, cz + 1)
+                for k in cells.get((x, y, z), ())}
+        d = min([point_triangle_distance(centroid, *(overts[i] for i in ofaces[k])) for k in near] + [scale])
+        t = d / scale
+        colors.append((int(255 * t), int(80 * (1 - t)), int(255 * (1 - t))))
+    return colors
+
+
 def render(verts, faces, colors, cam, W, H, flat, edges):
     (fx, fy, fz), radius, (r, u, b) = cam
     s = W / (2.0 * radius)
@@ -217,7 +291,7 @@ def floats(n, desc, lo=-1e300, hi=1e300, sep=','):
 
 def main(argv):
     for k in range(len(argv) - 2, -1, -1):  # let "--focus -0.8,1,0" work, not only "--focus=..."
-        if argv[k] in ('--focus', '--radius', '--view', '--size', '--flat-color'):
+        if argv[k] in ('--focus', '--radius', '--view', '--size', '--flat-color', '--distance-scale'):
             argv[k:k + 2] = [argv[k] + '=' + argv[k + 1]]
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument('out', metavar='OUT.png')
@@ -231,6 +305,8 @@ def main(argv):
     ap.add_argument('--flat-color', metavar='R,G,B', type=floats(3, 'R,G,B in 0..255', 0, 255),
                     default=[200, 200, 200])
     ap.add_argument('--edges', action='store_true')
+    ap.add_argument('--distance-to', metavar='MESH')
+    ap.add_argument('--distance-scale', metavar='D', type=floats(1, 'a positive number', 1e-300))
     try:
         a = ap.parse_args(argv)
     except SystemExit as ex:  # usage errors exit with 1 (argparse uses 2); -h still exits 0
@@ -245,6 +321,13 @@ def main(argv):
     lo, hi = [min(c) for c in zip(*used)], [max(c) for c in zip(*used)]
     focus = a.focus or [(l + h) / 2 for l, h in zip(lo, hi)]
     radius = a.radius or (math.dist(lo, hi) / 2 or 1.0)
+    if a.distance_to:
+        try:
+            other = load_mesh(a.distance_to)
+        except MeshError as ex:
+            sys.exit('render_mesh.py: %s: %s' % (a.distance_to, ex))
+        scale = a.distance_scale or (math.dist(lo, hi) / 100 or 1.0)
+        meshes = [(v, f, distance_colors(v, f, other, focus, 3 * radius, scale)) for v, f, _ in meshes]
     az, el = (math.radians(v) for v in a.view)
     b = (math.cos(el) * math.sin(az), math.sin(el), math.cos(el) * math.cos(az))  # towards viewer
     r = (math.cos(az), 0.0, -math.sin(az))  # screen right
