@@ -62,10 +62,10 @@ struct CrossMapSettings {
   /// kFinerTargetRatio times the vertices of the template's side. The target's parameterization is
   /// the chart in which the map's relaxation averages the target's metric under each template
   /// triangle, here over many of its own; stopped earlier, it moves the map only where the energy is
-  /// nearly flat (session 40, FAUST 000 against 11 subjects and landmark sets refined to 50k vertices:
-  /// E_L2 within 1e-4 or lower on each, mean ground truth 0.475 -> 0.474% sqrt(area), the squeezed
-  /// target fingers 15-78 -> 12-45 iterations, 29-landmark pairs 7.5-17.8 -> 7.8-9.9 s). The template's
-  /// side is where the map starts and keeps `squeezed`'s tolerance: relaxed less, it moved maps of
+  /// nearly flat (session 40, FAUST 000 against six subjects refined to 50k vertices, 11 pairs with 73
+  /// or 29 landmarks: E_L2 within 1e-4 or lower on each, mean ground truth 0.475 -> 0.474% sqrt(area), the
+  /// squeezed target fingers 15-78 -> 12-45 iterations, 29-landmark pairs 7.5-17.8 -> 7.8-9.9 s). The
+  /// template's side is where the map starts and keeps `squeezed`'s tolerance: relaxed less, it moved maps of
   /// the evaluation both ways.
   double finer_target_tolerance = 1e-3;
   GluingSettings gluing;  ///< relaxing across curves where a patch alone cannot (map/chart_gluing.h)
