@@ -7,8 +7,10 @@ namespace xparam::evaluate {
 
 // Seconds to load both meshes (load_mesh: read, validate, build, orient) and to solve one sparse
 // system over the larger mesh ((I + L) x = positions, L its cotangent Laplacian; SimplicialLDLT
-// factorization and solve), the least of `repetitions` runs.
+// factorization and solve), the least of `repetitions` runs. With `target_needs_intake` (a scan
+// load_mesh refuses: loose parts, non-manifold bits) the target is only read, as its triangle soup,
+// and the solve is over the soup's triangles when it is the larger.
 double floor_seconds(const std::filesystem::path& source, const std::filesystem::path& target,
-                     int repetitions = 3);
+                     int repetitions = 3, bool target_needs_intake = false);
 
 }  // namespace xparam::evaluate
