@@ -93,6 +93,12 @@ struct MapOptimizationSettings {
   double settled_fraction = 0.3;
 };
 
+/// An anchor's barycentric coordinate at a corner of its face at or below this is rounding (a
+/// point on an edge or at a vertex, located through a refined face): that corner is not held.
+/// Held, it was pinned to two landmarks where a helper anchor stood beside a landmark's vertex, and
+/// the map missed the landmark (SHREC'19 22 [73 CAESAR]: Rt. Tragion by 3 mm, held by 1e-16).
+inline constexpr double kHeldBarycentric = 1e-12;
+
 /// A template vertex whose image is tied to a target landmark.
 struct PinnedVertex {
   int vertex = -1;                                     ///< template vertex id

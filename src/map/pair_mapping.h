@@ -51,7 +51,8 @@ struct PairSettings {
   /// (map/corner_report.h), map again with a helper anchor behind each of them
   /// (map/tip_anchors.h) and keep that map when it folds less (map_pair). Also when every map
   /// of the first round of extremity_anchors loses and one folds: that map again, with helpers
-  /// behind its own disagreeing corners, kept when it beats the map without tips.
+  /// behind its own disagreeing corners, kept when it beats the map without tips. And, last, when
+  /// the map no round of tips replaced squeezes template faces to nothing without folding.
   bool tip_anchors = true;
   /// Map again through helper anchors at the tips of unanchored protrusions (fingers without
   /// landmarks) matched through the first map (map/extremity_anchors.h), and keep that map when
@@ -235,7 +236,8 @@ struct PairMapping {
   int layouts_built = 1;  ///< base domains built and mapped (PairSettings::retry_keeping_corners): 1 to 3
   int layout_kept = 1;    ///< which of them the map is on (1: the first)
   /// The helper anchors the map passes through besides the given ones, one behind each tip
-  /// whose corners disagreed (PairSettings::tip_anchors); empty unless they made it fold less.
+  /// whose corners disagreed (PairSettings::tip_anchors); empty unless they made it fold or
+  /// squeeze less.
   /// They are among `anchors`.
   std::vector<TipAnchor> tip_anchors;
   /// The helper anchors at protrusion tips the map passes through (PairSettings::extremity_anchors);
@@ -290,6 +292,12 @@ using StageCallback = std::function<void(const std::string& stage)>;
 /// limit. A release whose layout cannot be built is passed over. Helpers behind tips are then
 /// tried on the released map, and the better of the two ways (helpers alone, or releases then
 /// helpers) is kept by the same rule.
+///
+/// Then the rounds of helper anchors at protrusion tips (settings.extremity_anchors; see
+/// PairSettings). Last, when no round of tips replaced the map and it squeezes template faces to
+/// nothing (L2 stretch over 10 times its scale) without a fold, the helpers behind tips are tried
+/// on it as for folds, a map replacing it when it folds no more by both counts, squeezes fewer
+/// faces so and is less stretched (E_L2), with the same rule for collapsed faces and area.
 ///
 /// Every try above is a whole map; settings.max_maps bounds how many the pair makes in all.
 /// \throw InputError for anchors that do not match or cannot be placed

@@ -4,6 +4,7 @@
 #include "core/provenance.h"
 #include "domain/patch_extraction.h"
 #include "domain/patch_merging.h"
+#include "map/map_optimization.h"
 
 #include <algorithm>
 #include <functional>
@@ -64,10 +65,22 @@ std::vector<double> distances_in_patch(const Mesh& mesh, int patch, const std::v
   return distance;
 }
 
-// The helper of `anchor` on `side`, on that side's input mesh; nothing when the widest corner
-// holds no vertex off its curves within reach.
+// Whether an anchor at `point` on `input` would hold (move with its face's corners: an anchor
+// inside a face) a vertex of `held`.
+bool holds_any(const Mesh& input, const SurfacePoint& point, const std::vector<int>& held) {
+  int corner = 0;
+  for (const VertexHandle v : input.fv_range(input.face_handle(point.face))) {
+    if (point.bary[corner++] > kHeldBarycentric && std::find(held.begin(), held.end(), v.idx()) != held.end())
+      return true;
+  }
+  return false;
+}
+
+// The helper of `anchor` on `side`, on that side's input mesh, holding no vertex of `held`;
+// nothing when the widest corner holds no such vertex off its curves within reach.
 std::optional<SurfacePoint> helper_point(const Layout& layout, const CornerAngles& angles, const Mesh& input,
-                                         int side, int anchor, double reach_fraction) {
+                                         int side, int anchor, double reach_fraction,
+                                         const std::vector<int>& held) {
   const LayoutSide& s = layout.sides[side];
   const Mesh& mesh = s.mesh;
   const auto [patch, corner] = widest_corner(layout, angles, side, anchor);
@@ -93,22 +106,26 @@ std::optional<SurfacePoint> helper_point(const Layout& layout, const CornerAngle
   }
 
   // Farthest from both curves of the corner; ties go to the smaller vertex index.
-  VertexHandle best;
-  double best_clearance = 0.0;
+  std::vector<std::pair<double, int>> candidates;  // (-clearance, vertex)
   for (const VertexHandle v : mesh.vertices()) {
     if (on_boundary[v.idx()] || from_anchor[v.idx()] == kFar) continue;
     const double clearance = std::min(from_leaving[v.idx()], from_arriving[v.idx()]);
-    if (clearance > best_clearance) {
-      best_clearance = clearance;
-      best = v;
+    if (clearance > 0.0) candidates.emplace_back(-clearance, v.idx());
+  }
+  std::sort(candidates.begin(), candidates.end());
+  for (const auto& [clearance, index] : candidates) {
+    const VertexHandle v = mesh.vertex_handle(index);
+    std::optional<SurfacePoint> point;
+    for (const FaceHandle f : mesh.vf_range(v)) {
+      if (patch_of(mesh, f) == patch) {
+        point = to_input_point(mesh, input, f, position(mesh, v));
+        break;
+      }
     }
+    XP_ASSERT_MSG(point, "helper vertex " << index << " has no face in patch " << patch);
+    if (!holds_any(input, *point, held)) return point;
   }
-  if (!best.is_valid()) return std::nullopt;
-  for (const FaceHandle f : mesh.vf_range(best)) {
-    if (patch_of(mesh, f) == patch) return to_input_point(mesh, input, f, position(mesh, best));
-  }
-  XP_ASSERT_MSG(false, "helper vertex " << best.idx() << " has no face in patch " << patch);
-  return {};
+  return std::nullopt;
 }
 
 // `base` + " (behind)", with "'" appended until no name in `taken` has it.
@@ -122,7 +139,8 @@ std::string free_name(const std::string& base, const std::vector<std::string>& t
 
 std::vector<TipAnchor> tip_anchors(const Layout& layout, const std::array<const Mesh*, 2>& inputs,
                                    const std::vector<std::string>& names,
-                                   const std::vector<CornerMismatch>& tips, double reach) {
+                                   const std::vector<CornerMismatch>& tips, double reach,
+                                   std::optional<std::vector<int>> held_template_vertices) {
   if (static_cast<int>(names.size()) != layout.n_anchors) {
     throw ParamError("tip_anchors: " + std::to_string(names.size()) + " names for " +
                      std::to_string(layout.n_anchors) + " anchors");
@@ -133,8 +151,15 @@ std::vector<TipAnchor> tip_anchors(const Layout& layout, const std::array<const 
   for (const CornerMismatch& tip : tips) {
     std::array<std::optional<SurfacePoint>, 2> points;
     for (int side = 0; side < 2; ++side)
-      points[side] = helper_point(layout, angles, *inputs[side], side, tip.anchor, reach);
+      points[side] =
+          helper_point(layout, angles, *inputs[side], side, tip.anchor, reach,
+                       side == 0 && held_template_vertices ? *held_template_vertices : std::vector<int>{});
     if (!points[0] || !points[1]) continue;
+    int corner = 0;
+    if (held_template_vertices) {
+      for (const VertexHandle v : inputs[0]->fv_range(inputs[0]->face_handle(points[0]->face)))
+        if (points[0]->bary[corner++] > kHeldBarycentric) held_template_vertices->push_back(v.idx());
+    }
     TipAnchor helper;
     helper.tip = names[tip.anchor];
     const std::string name = free_name(helper.tip, taken);

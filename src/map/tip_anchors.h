@@ -17,6 +17,7 @@
 #include "map/corner_report.h"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,9 +38,16 @@ struct TipAnchor {
 /// \param names   `names[k]` names layout anchor k
 /// \param reach   how far from the tip the helper may lie, as a fraction of the shortest layout
 ///                curve leaving the tip on the same mesh
+/// \param held_template_vertices  when given, the template input vertices the anchors already
+///                hold (an anchor's vertex, or the corners of the face an anchor lies inside): a
+///                helper on the template then holds none of them, nor one an earlier helper holds,
+///                taking the next farthest vertex of the corner instead, since a vertex pinned to
+///                two landmarks misses one of them (SHREC'19 22 [73 CAESAR]: behind Rt. Tragion, in
+///                a face at the Tragion's vertex, which then missed its landmark by 3.5 mm)
 /// \throw ParamError when names and anchors differ in number
 std::vector<TipAnchor> tip_anchors(const Layout& layout, const std::array<const Mesh*, 2>& inputs,
                                    const std::vector<std::string>& names,
-                                   const std::vector<CornerMismatch>& tips, double reach);
+                                   const std::vector<CornerMismatch>& tips, double reach,
+                                   std::optional<std::vector<int>> held_template_vertices = std::nullopt);
 
 }  // namespace xparam

@@ -49,20 +49,6 @@ constexpr double kTipSlack = 0.5;
 // 1.56 and 1.88 reaches); no map changes.
 constexpr double kDoubtfulMiss = 1.5;
 
-// Template faces a map stretches past use: L2 stretch (eq. 5) over kGrossStretch times the
-// map's own scale, sqrt(image area / template area). A map that squeezes an unanchored
-// protrusion into its root leaves the target's protrusion covered by a few such faces
-// (SHREC'19 18 [29 anthropometric]: the template's forearm spread over the target's hand, E_L2
-// 8600), as lost to the user as folded ones.
-int grossly_stretched_faces(const PairMapping& map) {
-  constexpr double kGrossStretch = 10.0;
-  const DistortionSums& sums = map.distortion.all_sums;
-  const double scale = std::sqrt(sums.image_area / sums.source_area);
-  return static_cast<int>(std::count_if(map.distortion.face_l2_stretch.begin(),
-                                        map.distortion.face_l2_stretch.end(),
-                                        [&](double l2) { return !(l2 <= kGrossStretch * scale); }));
-}
-
 // Faces lost to the user: folded by either count, or grossly stretched.
 int lost_faces(const PairMapping& map) {
   return static_cast<int>(map.quality.flipped_faces.size()) + map.quality.strictly_folded_faces +

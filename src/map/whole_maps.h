@@ -117,4 +117,24 @@ std::optional<AnchoredMap> with_helpers_behind_tips(
     const PairInputs& in, const AnchoredMap& current, PairSeconds& seconds,
     const std::function<bool(const PairMapping&)>& worth_retrying = {});
 
+// Template faces a map stretches past use: L2 stretch (eq. 5) over 10 times the map's own scale,
+// sqrt(image area / template area). A map that squeezes an unanchored protrusion into its root
+// leaves the target's protrusion covered by a few such faces (SHREC'19 18 [29 anthropometric]: the
+// template's forearm spread over the target's hand, E_L2 8600), as lost to the user as folded ones.
+int grossly_stretched_faces(const PairMapping& map);
+
+// Whether a map through helper anchors replaces `current`, which squeezes part of the template to
+// nothing (grossly_stretched_faces): it folds no more by both counts, squeezes fewer faces so, is
+// less stretched (E_L2), collapses no more faces and covers the target's area as well.
+bool squeezes_less(const PairMapping& other, const PairMapping& current);
+
+// A map through `current`'s anchors plus helper anchors behind its disagreeing corners, when
+// `current` squeezes faces to nothing without folding (a map the retries for folds never see):
+// each of tip_anchor_reaches in turn while the best so far squeezes any, kept by squeezes_less.
+// No helper holds a template vertex an anchor holds (SHREC'19 22 [73 CAESAR]: behind Rt. Tragion,
+// in a face at the Tragion's vertex, it made the map miss that landmark by 3.5 mm). Nothing when
+// no try replaces `current`.
+std::optional<AnchoredMap> with_helpers_behind_squeezed_tips(const PairInputs& in, const AnchoredMap& current,
+                                                             PairSeconds& seconds);
+
 }  // namespace xparam::pair_maps
