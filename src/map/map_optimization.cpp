@@ -576,6 +576,14 @@ bool MapOptimizer::move_vertex(int v) {
 
 }  // namespace map_optimizer
 
+std::vector<int> held_vertices(const Mesh& mesh, const SurfacePoint& point) {
+  std::vector<int> held;
+  int corner = 0;
+  for (VertexHandle v : mesh.fv_range(mesh.face_handle(point.face)))
+    if (point.bary[corner++] > kHeldBarycentric) held.push_back(v.idx());
+  return held;
+}
+
 MapOptimizationResult optimize_map(const Mesh& source, const std::vector<std::array<int, 3>>& faces,
                                    const Mesh& target, std::vector<SurfacePoint> locations,
                                    const std::vector<PinnedVertex>& pinned,

@@ -99,6 +99,10 @@ struct MapOptimizationSettings {
 /// the map missed the landmark (SHREC'19 22 [73 CAESAR]: Rt. Tragion by 3 mm, held by 1e-16).
 inline constexpr double kHeldBarycentric = 1e-12;
 
+/// The vertices of `mesh` an anchor at `point` holds: the corners of its face whose barycentric
+/// coordinate is above kHeldBarycentric (one for an anchor at a vertex).
+std::vector<int> held_vertices(const Mesh& mesh, const SurfacePoint& point);
+
 /// A template vertex whose image is tied to a target landmark.
 struct PinnedVertex {
   int vertex = -1;                                     ///< template vertex id

@@ -65,15 +65,11 @@ std::vector<double> distances_in_patch(const Mesh& mesh, int patch, const std::v
   return distance;
 }
 
-// Whether an anchor at `point` on `input` would hold (move with its face's corners: an anchor
-// inside a face) a vertex of `held`.
+// Whether an anchor at `point` on `input` would hold a vertex of `held`.
 bool holds_any(const Mesh& input, const SurfacePoint& point, const std::vector<int>& held) {
-  int corner = 0;
-  for (const VertexHandle v : input.fv_range(input.face_handle(point.face))) {
-    if (point.bary[corner++] > kHeldBarycentric && std::find(held.begin(), held.end(), v.idx()) != held.end())
-      return true;
-  }
-  return false;
+  const std::vector<int> by_point = held_vertices(input, point);
+  return std::any_of(by_point.begin(), by_point.end(),
+                     [&](int v) { return std::find(held.begin(), held.end(), v) != held.end(); });
 }
 
 // The helper of `anchor` on `side`, on that side's input mesh, holding no vertex of `held`;
@@ -155,10 +151,9 @@ std::vector<TipAnchor> tip_anchors(const Layout& layout, const std::array<const 
           helper_point(layout, angles, *inputs[side], side, tip.anchor, reach,
                        side == 0 && held_template_vertices ? *held_template_vertices : std::vector<int>{});
     if (!points[0] || !points[1]) continue;
-    int corner = 0;
     if (held_template_vertices) {
-      for (const VertexHandle v : inputs[0]->fv_range(inputs[0]->face_handle(points[0]->face)))
-        if (points[0]->bary[corner++] > kHeldBarycentric) held_template_vertices->push_back(v.idx());
+      const std::vector<int> held = held_vertices(*inputs[0], *points[0]);
+      held_template_vertices->insert(held_template_vertices->end(), held.begin(), held.end());
     }
     TipAnchor helper;
     helper.tip = names[tip.anchor];

@@ -451,14 +451,12 @@ std::optional<PairMapping> map_if_possible(const Mesh& source, const AnchorSet& 
 
 namespace {
 
-// The template vertices the anchors of `anchors` hold: each one's vertex, or the corners of the
-// face it lies inside that it does not lie opposite to (which move together, map/map_optimization.h).
-std::vector<int> held_vertices(const Mesh& source, const PlacedAnchors& anchors) {
+// The template vertices the anchors of `anchors` hold (held_vertices of each).
+std::vector<int> vertices_held_by(const Mesh& source, const PlacedAnchors& anchors) {
   std::vector<int> held;
   for (const PlacedAnchor& anchor : anchors.anchors) {
-    int corner = 0;
-    for (VertexHandle v : source.fv_range(source.face_handle(anchor.input_point.face)))
-      if (anchor.input_point.bary[corner++] > kHeldBarycentric) held.push_back(v.idx());
+    const std::vector<int> by_one = held_vertices(source, anchor.input_point);
+    held.insert(held.end(), by_one.begin(), by_one.end());
   }
   return held;
 }
@@ -542,7 +540,7 @@ bool squeezes_less(const PairMapping& other, const PairMapping& current) {
 std::optional<AnchoredMap> with_helpers_behind_squeezed_tips(const PairInputs& in, const AnchoredMap& current,
                                                              PairSeconds& seconds) {
   return helpers_while(
-      in, current, seconds, {}, held_vertices(in.source, current.map.anchors[0]),
+      in, current, seconds, {}, vertices_held_by(in.source, current.map.anchors[0]),
       [](const PairMapping& map) { return grossly_stretched_faces(map) > 0; }, squeezes_less);
 }
 

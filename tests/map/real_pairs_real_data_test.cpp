@@ -510,7 +510,6 @@ TEST(ShrecHuman, TipAnchorsPutTheFingersOnTheTargetsFingers) {
   use_the_earlier_tree(with_tips);  // the layout whose map the retries repair
   PairSettings without_tips = with_tips;
   without_tips.extremity_anchors = false;
-  without_tips.tip_anchors = false;  // the first map itself (helpers behind tips would unsqueeze it too)
   const PairMapping squeezed = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {}, without_tips);
   const PairMapping map = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {}, with_tips);
 
