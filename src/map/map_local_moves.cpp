@@ -1,5 +1,6 @@
 // The moves of a few vertices at once outside the sweeps of the map optimization
-// (map/map_optimizer.h): opening the folds the sweeps leave, and the anchors inside faces.
+// (map/map_optimizer.h): opening the folds the sweeps leave, and centring the vertex anchors with
+// slack.
 
 #include "map/map_optimizer.h"
 
@@ -16,25 +17,17 @@ namespace {
 // Passes of open_remaining_folds, at most.
 constexpr int kFoldPasses = 3;
 
-// How centre_anchors drags an anchor inside a face: steps at most, and rings about its corners
-// dragged with them at most (kLayRings, below).
-constexpr int kCentringRounds = 3;
-
-// And a vertex anchor that starts beyond its slack (a protrusion tip the map is pulled onto): it
-// is dragged to within this fraction of its slack, by up to kTipCentringRounds steps with up to
-// kTipDragRings rings about it. Its slack lets the sweeps settle the tip where its faces are
-// least distorted, but nothing in their energy carries a finger onwards to its partner: the drag
-// must, as a layout through the tip would start it there. A fingertip's 3 rings are a few
-// millimetres and fold when dragged centimetres; 8 carry the finger's end. Measured on the
-// realistic set (session 31): centring to the slack with 3 rings left the pulled tips of FAUST
-// 000/030 [29 anthropometric] up to 2.4 cm off (its worse hand 0.45% of sqrt(area) off the truth,
-// 0.18% through a whole map); this way, the hand 0.17%.
+// How centre_anchors drags a vertex anchor that starts beyond its slack (a protrusion tip the map
+// is pulled onto): it is dragged to within this fraction of its slack, by up to kTipCentringRounds steps with
+// up to kTipDragRings rings about it. Its slack lets the sweeps settle the tip where its faces are least
+// distorted, but nothing in their energy carries a finger onwards to its partner: the drag must, as a layout
+// through the tip would start it there. A fingertip's 3 rings are a few millimetres and fold when dragged
+// centimetres; 8 carry the finger's end. Measured on the realistic set (session 31): centring to the slack
+// with 3 rings left the pulled tips of FAUST 000/030 [29 anthropometric] up to 2.4 cm off (its worse hand
+// 0.45% of sqrt(area) off the truth, 0.18% through a whole map); this way, the hand 0.17%.
 constexpr double kTipCentringAim = 0.1;
 constexpr int kTipCentringRounds = 6;
 constexpr int kTipDragRings = 8;
-
-// Halvings of a step slide_in_face_anchors tries.
-constexpr int kSlideTries = 10;
 
 // Angles lay_anchor_face_again tries, evenly spaced, and how many rings about the face it lays
 // with it at most.
@@ -80,7 +73,7 @@ std::vector<int> MapOptimizer::held_anchor_of(int f) const {
   const auto& t = faces_[f];
   for (int v : t) {
     const int pin = pin_index_[v];
-    if (pin < 0 || is_free(v)) continue;
+    if (pin < 0 || (pinned_[pin].bary == 1.0 && is_free(v))) continue;
     const std::vector<int>& pins = anchor_pins_[anchor_of_pin_[pin]];
     if (std::all_of(pins.begin(), pins.end(),
                     [&](int k) { return std::find(t.begin(), t.end(), pinned_[k].vertex) != t.end(); }))
@@ -96,9 +89,9 @@ void MapOptimizer::group_pins() {
   anchor_of_pin_.resize(pinned_.size());
   for (auto& [anchor, pins] : pins_by_anchor) {
     for (int k : pins) anchor_of_pin_[k] = static_cast<int>(anchor_pins_.size());
-    if (anchor >= 0 && pinned_[pins.front()].bary < 1.0) in_face_anchors_.push_back(pins);
     anchor_pins_.push_back(std::move(pins));
   }
+  group_in_face_anchors();
 }
 
 std::vector<int> MapOptimizer::vertices_of(const std::vector<int>& pins) const {
@@ -116,23 +109,19 @@ Eigen::Vector3d MapOptimizer::landmark_miss(const std::vector<int>& pins) const 
 void MapOptimizer::centre_anchors() {
   for (const std::vector<int>& pins : anchor_pins_) {
     const double slack = pinned_[pins.front()].slack;
-    const bool in_face = pinned_[pins.front()].bary < 1.0;
     // A vertex anchor without slack is where the layout put it: on its landmark.
-    if (!in_face && !(slack > 0.0)) continue;
-    const double aim = in_face ? slack : kTipCentringAim * slack;
-    const int rounds = in_face ? kCentringRounds : kTipCentringRounds;
-    const int max_rings = in_face ? kLayRings : kTipDragRings;
+    if (pinned_[pins.front()].bary < 1.0 || !(slack > 0.0)) continue;
     const std::vector<int> corners = vertices_of(pins);
-    for (int round = 0; round < rounds; ++round) {
+    for (int round = 0; round < kTipCentringRounds; ++round) {
       const Eigen::Vector3d full = landmark_miss(pins);
-      if (full.norm() <= aim) break;
+      if (full.norm() <= kTipCentringAim * slack) break;
       const auto shorter = [&](const FoldTally& before, const FoldTally& after) {
         return landmark_miss(pins).norm() < full.norm() && !after.folds_more_than(before);
       };
       bool stepped = false;
       for (const double fraction : {1.0, 0.5, 0.25}) {
         std::vector<int> dragged = corners;
-        for (int rings = 0; rings <= max_rings && !stepped; ++rings) {
+        for (int rings = 0; rings <= kTipDragRings && !stepped; ++rings) {
           if (rings > 0) add_free_ring(dragged);
           stepped = drag(dragged, fraction * full, shorter);
         }
@@ -141,56 +130,34 @@ void MapOptimizer::centre_anchors() {
       if (!stepped) break;
     }
   }
-}
-
-bool MapOptimizer::slide_in_face_anchors() {
-  bool any = false;
-  for (const std::vector<int>& pins : in_face_anchors_) {
-    const double slack = pinned_[pins.front()].slack;
-    if (!(slack > 0.0)) continue;
-    const std::vector<int> corners = vertices_of(pins);
-    // d(energy)/d(a translation of every corner) is the sum of each corner's gradient.
-    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
-    double edges = 0.0;
-    for (std::size_t c = 0; c < corners.size(); ++c) {
-      gradient += ring_gradient(corners[c], ring_references(corners[c]), positions_[corners[c]]);
-      edges += (positions_[corners[c]] - positions_[corners[(c + 1) % corners.size()]]).norm();
-    }
-    const Eigen::Vector3d normal = reference_.face_normal(locations_[corners.front()].face);
-    const Eigen::Vector3d downhill = -(gradient - gradient.dot(normal) * normal);
-    if (!(downhill.norm() > 0.0) || !(edges > 0.0)) continue;
-    // A point the drag left beyond the slack may slide too, but no farther out.
-    const double allowed = std::max(slack, landmark_miss(pins).norm());
-    const auto lower = [&](const FoldTally& before, const FoldTally& after) {
-      return after.energy < before.energy && !after.folds_more_than(before) &&
-             landmark_miss(pins).norm() <= allowed;
-    };
-    Eigen::Vector3d step = downhill.normalized() * 0.5 * edges / static_cast<double>(corners.size());
-    for (int tries = 0; tries < kSlideTries; ++tries, step *= 0.5) {
-      if (!drag(corners, step, lower)) continue;
-      for (int v : corners) moved_[v] = 1;
-      any = true;
-      break;
-    }
-  }
-  return any;
+  centre_in_face_anchors();
 }
 
 bool MapOptimizer::drag(const std::vector<int>& vertices, const Eigen::Vector3d& step,
                         const std::function<bool(const FoldTally&, const FoldTally&)>& take) {
+  const std::optional<std::vector<Image>> dragged =
+      walked(vertices, std::vector<Eigen::Vector3d>(vertices.size(), step));
+  if (!dragged) return false;
   const std::vector<int> around = faces_about(vertices);
   const FoldTally before = tally(around);
-  std::vector<Image> start, dragged;
-  for (int v : vertices) {
-    const std::optional<SurfacePoint> there = walker_.walk(locations_[v], step);
-    if (!there) return false;
-    start.push_back(image_of(v));
-    dragged.push_back({*there, position(target_, *there), reference_.interpolated_normal(*there)});
-  }
-  for (std::size_t k = 0; k < vertices.size(); ++k) place(vertices[k], dragged[k]);
+  std::vector<Image> start;
+  for (int v : vertices) start.push_back(image_of(v));
+  for (std::size_t k = 0; k < vertices.size(); ++k) place(vertices[k], (*dragged)[k]);
   if (take(before, tally(around))) return true;
   for (std::size_t k = 0; k < vertices.size(); ++k) place(vertices[k], start[k]);
   return false;
+}
+
+std::optional<std::vector<MapOptimizer::Image>> MapOptimizer::walked(
+    const std::vector<int>& vertices, const std::vector<Eigen::Vector3d>& steps) const {
+  std::vector<Image> images;
+  images.reserve(vertices.size());
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    const std::optional<SurfacePoint> there = walker_.walk(locations_[vertices[k]], steps[k]);
+    if (!there) return std::nullopt;
+    images.push_back({*there, position(target_, *there), reference_.interpolated_normal(*there)});
+  }
+  return images;
 }
 
 void MapOptimizer::add_free_ring(std::vector<int>& vertices) const {
@@ -198,7 +165,8 @@ void MapOptimizer::add_free_ring(std::vector<int>& vertices) const {
   for (std::size_t k = 0; k < inner; ++k) {
     for (const Incidence& in : incidences_[vertices[k]]) {
       for (int u : faces_[in.face])
-        if (is_free(u) && std::find(vertices.begin(), vertices.end(), u) == vertices.end())
+        if (is_free(u) && !in_face_corner_[u] &&
+            std::find(vertices.begin(), vertices.end(), u) == vertices.end())
           vertices.push_back(u);
     }
   }

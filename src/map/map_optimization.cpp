@@ -74,7 +74,11 @@ MapOptimizer::MapOptimizer(const Mesh& source, const std::vector<std::array<int,
   }
   face_cache_.resize(faces_.size());
   pin_index_.assign(n_vertices, -1);
-  for (std::size_t k = 0; k < pinned.size(); ++k) pin_index_[pinned[k].vertex] = static_cast<int>(k);
+  // A vertex an in-face anchor and a vertex anchor both hold is the vertex anchor's.
+  for (std::size_t k = 0; k < pinned.size(); ++k) {
+    int& pin = pin_index_[pinned[k].vertex];
+    if (pin < 0 || pinned[k].bary == 1.0) pin = static_cast<int>(k);
+  }
   pinned_ = pinned;
   group_pins();
   colour_free_vertices();
@@ -101,8 +105,7 @@ MapOptimizationResult MapOptimizer::run() {
   for (int since_refresh = 0, sweeps_left = settings_.max_sweeps; sweeps_left > 0; --sweeps_left) {
     settled_drop_ = settings_.settled_fraction * settings_.tolerance * energy.unfolded() /
                     static_cast<double>(locations_.size());
-    bool any_moved = sweep();
-    any_moved = slide_in_face_anchors() || any_moved;
+    const bool any_moved = sweep();
     ++result.sweeps;
     const EnergySum was = energy;
     const double coverage_was = coverage;
@@ -147,6 +150,10 @@ MapOptimizationResult MapOptimizer::run() {
       result.energy.push_back(total_energy().total);
     }
   }
+  // The pulls leave each in-face anchor's point where its pull balances the distortion about it,
+  // a fraction of a millimetre off on a human: the last centring meets the landmarks (or slack).
+  // It can raise the energy a little, and is not recorded in it.
+  centre_in_face_anchors();
   result.flipped_after = count_folded();
   result.distortion_after = mean_unfolded_energy();
   for (std::size_t v = 0; v < locations_.size(); ++v) {
@@ -281,7 +288,7 @@ MapOptimizer::FaceValue MapOptimizer::face_distortion(int f, const FaceReference
 MapOptimizer::FaceValue MapOptimizer::face_value(int f, const FaceReferences& reference, int moved,
                                                  const Eigen::Vector3d& at) const {
   FaceValue value = face_distortion(f, reference, moved, at);
-  value.energy += coverage_energy(f, moved, at);
+  value.energy += coverage_energy(f, moved, at) + anchor_pull_energy(f, moved, at);
   return value;
 }
 
@@ -297,7 +304,7 @@ const MapOptimizer::FaceCache& MapOptimizer::cached(int f) const {
 
 MapOptimizer::FaceValue MapOptimizer::face_value_now(int f) const {
   FaceValue value = cached(f).distortion;
-  value.energy += coverage_energy(f, -1, {});
+  value.energy += coverage_energy(f, -1, {}) + anchor_pull_energy(f, -1, {});
   return value;
 }
 
@@ -427,7 +434,7 @@ MapOptimizer::FaceValue MapOptimizer::ring_value(int v, const std::vector<FaceRe
     const int f = incidences_[v][k].face;
     FaceValue value = face_distortion(f, references[k], v, at);
     if (distortions) (*distortions)[k] = value;
-    value.energy += coverage_energy(f, v, at);
+    value.energy += coverage_energy(f, v, at) + anchor_pull_energy(f, v, at);
     ring.energy += value.energy;
     ring.against_own += value.against_own;
     ring.against_corners += value.against_corners;
@@ -451,7 +458,8 @@ Eigen::Vector3d MapOptimizer::ring_gradient(int v, const std::vector<FaceReferen
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
   for (std::size_t k = 0; k < incidences_[v].size(); ++k) {
     const Incidence& in = incidences_[v][k];
-    gradient += coverage_gradient(in.face, in.corner, v, at);
+    gradient +=
+        coverage_gradient(in.face, in.corner, v, at) + anchor_pull_gradient(in.face, in.corner, v, at);
     PlaneFrame frame;
     const Eigen::Matrix2d j = jacobian(in.face, references[k], v, at, frame);
     if (!frame.valid || !(j.determinant() > 0.0)) continue;
@@ -475,7 +483,7 @@ int MapOptimizer::strictly_folded_in_ring(int v, int moved, const SurfacePoint& 
 
 bool MapOptimizer::within_slack(int v, const Eigen::Vector3d& at) const {
   const int pin = pin_index_[v];
-  if (pin < 0) return true;
+  if (pin < 0 || pinned_[pin].bary < 1.0) return true;  // an in-face anchor's corner: its pull holds it
   const Eigen::Vector3d& landmark = pinned_[pin].landmark;
   return (at - landmark).norm() <= std::max(pinned_[pin].slack, (positions_[v] - landmark).norm());
 }

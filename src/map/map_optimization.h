@@ -47,10 +47,13 @@
 /// anchor lies inside, all three corners held; a face round a vertex anchor whose free corners
 /// each fold another face when they move alone) is laid again: the face congruent to its
 /// template shape, its landmark point on the landmark, turned to each of 32 angles, its corners
-/// walked onto the target, taken by the same rule. An anchor inside a face holds the face's
-/// corners, which move only together: onto the landmark before the sweeps (dragged by the miss),
-/// laid again as above, and, with slack, after every sweep down their faces' energy while the
-/// landmark's point of the face stays within the slack.
+/// walked onto the target, taken by the same rule. An anchor inside a face (a landmark placed on a
+/// scan) is met through the face's corners: before the sweeps they move onto the landmark
+/// together (with the rings about them, the steps falling off ring by ring; anchors whose faces
+/// share a corner as one group); in the sweeps each corner moves freely, a stiff pull of the
+/// landmark's point of the face onto the landmark (beyond its slack) part of the energy; after
+/// them a last such move closes what the pull leaves. The miss is measured across the target's
+/// normal at the landmark: the chord triangle's point lies off a curved target by its sagitta.
 
 #include "core/mesh.h"
 #include "core/surface_point.h"
@@ -112,6 +115,9 @@ struct PinnedVertex {
   /// -1: an anchor of its own
   int anchor = -1;
   double bary = 1.0;  ///< the landmark's barycentric coordinate at this vertex (1: a vertex anchor)
+  /// The target's unit normal at the landmark (an in-face anchor's miss is measured across it, in the
+  /// tangent plane: the chord triangle lies off a curved target); zero: the miss in 3-D.
+  Eigen::Vector3d landmark_normal = Eigen::Vector3d::Zero();
 };
 
 /// What optimize_map made.

@@ -1,9 +1,9 @@
 #pragma once
 /// \file
 /// The optimizer behind optimize_map (map/map_optimization.h, where the method is described), for
-/// its two translation units only: the sweeps (map/map_optimization.cpp) and the moves of a few
-/// vertices at once outside them (map/map_local_moves.cpp: opening the folds the sweeps leave,
-/// and the anchors that lie inside faces).
+/// its translation units only: the sweeps (map/map_optimization.cpp), the moves of a few vertices
+/// at once outside them (map/map_local_moves.cpp: opening the folds the sweeps leave, centring
+/// the tips pulled with slack) and the anchors that lie inside faces (map/in_face_anchors.cpp).
 
 #include "core/closest_point.h"
 #include "core/mesh.h"
@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace xparam::map_optimizer {
@@ -98,12 +99,9 @@ class MapOptimizer {
   // Greedy colouring of the free vertices in index order: no two of a colour share a face.
   void colour_free_vertices();
 
-  // Whether v moves in the sweeps: not pinned, or a vertex anchor with slack (an in-face
-  // anchor's corners move only together, map_local_moves).
-  bool is_free(int v) const {
-    const int pin = pin_index_[v];
-    return pin < 0 || (pinned_[pin].slack > 0.0 && pinned_[pin].bary == 1.0);
-  }
+  // Whether v moves in the sweeps: not pinned, a vertex anchor with slack, or a corner of a face an
+  // anchor lies inside, which its anchor's pull holds (anchor_pull_energy).
+  bool is_free(int v) const { return free_[v] != 0; }
 
   // The face's references at the current images, with `moved` (if >= 0) at `at`, where the
   // target's interpolated normal is `at_normal`.
@@ -150,6 +148,14 @@ class MapOptimizer {
 
   // d(coverage energy of face f)/d(position of its corner `corner`), `moved` at `at`.
   Eigen::Vector3d coverage_gradient(int f, int corner, int moved, const Eigen::Vector3d& at) const;
+
+  // The pull of each anchor inside face f on the landmark's point of the face, with `moved` (if >= 0)
+  // at `at` (map/in_face_anchors.cpp): stiffness x (its miss beyond its slack)^2, the miss measured
+  // across the target's normal at the landmark.
+  double anchor_pull_energy(int f, int moved, const Eigen::Vector3d& at) const;
+
+  // d(anchor_pull_energy of face f)/d(position of its corner `corner`), `moved` at `at`.
+  Eigen::Vector3d anchor_pull_gradient(int f, int corner, int moved, const Eigen::Vector3d& at) const;
 
   // Each target vertex's share of the target's area, and the coverage margin.
   void measure_target_areas();
@@ -222,31 +228,65 @@ class MapOptimizer {
   // boundary) and that holds one of its corners where it is; empty when there is none.
   std::vector<int> held_anchor_of(int f) const;
 
-  // Groups the pins by anchor (anchor_pins_, anchor_of_pin_, in_face_anchors_).
+  // Groups the pins by anchor (anchor_pins_, anchor_of_pin_), marks the vertices that move (free_),
+  // and groups the anchors inside faces by the corners they share (in_face_groups_, their pulls,
+  // map/in_face_anchors.cpp).
   void group_pins();
   std::vector<int> vertices_of(const std::vector<int>& pins) const;
   // From the landmark's point of its face (its barycentrics of the corners' images) to the landmark.
   Eigen::Vector3d landmark_miss(const std::vector<int>& pins) const;
 
-  // An anchor inside a face holds the face's corners where the layout's map put them, and there
-  // the landmark's point of the face can lie well off the landmark where that map is squeezed
-  // about the anchor (up to 2.7 cm on FAUST's scan landmarks); a vertex anchor with slack may
-  // start beyond it (a protrusion tip the map is pulled onto, map/tip_rounds.cpp). The corners
-  // (or the vertex) move together by the miss (or half or a quarter of it), alone or with the
-  // free vertices up to a few rings about them, each walked along the target, while that shortens
-  // the miss and folds none of the faces about them more (by either reference or the strict
-  // count), a few times, until the miss is within the anchor's slack (a tenth of it for a vertex
-  // anchor: map_local_moves.cpp says why). The sweeps then relax what was dragged.
+  // A vertex anchor with slack may start beyond it (a protrusion tip the map is pulled onto,
+  // map/tip_rounds.cpp): the vertex moves by the miss (or half or a quarter of it), alone or with
+  // the free vertices up to a few rings about it, each walked along the target, while that
+  // shortens the miss and folds none of the faces about them more (by either reference or the
+  // strict count), a few times, until the miss is within a tenth of its slack
+  // (map_local_moves.cpp says why). Then every anchor inside a face is centred
+  // (centre_in_face_anchors). The sweeps relax what was dragged.
   void centre_anchors();
 
-  // After each sweep, the corners of each anchor inside a face with slack move together down the
-  // gradient of their faces' energy (in the target's plane under the first corner, half their
-  // mean edge, halved until taken), when that lowers the energy, folds nothing more and keeps
-  // the landmark's point within the slack (or no farther out, where the drag left it beyond).
-  // Returns whether any moved.
-  bool slide_in_face_anchors();
+  // The anchors inside faces (map/in_face_anchors.cpp). The layout's map can leave the landmark's
+  // point of such an anchor's face well off the landmark where that map is squeezed about the anchor
+  // (up to 2.7 cm on FAUST's scan landmarks). Centring brings it on before the sweeps; in the
+  // sweeps, its corners move freely but for a stiff pull of that point onto the landmark
+  // (AnchorPull), and centring meets the landmark again after them. Anchors whose faces share a
+  // corner, and the vertex anchors holding one of their corners, tie each other, so they are
+  // centred as one group.
+  struct InFaceGroup {
+    std::vector<int> anchors;  // indices into anchor_pins_, ascending
+    std::vector<int> corners;  // the template vertices they hold that no vertex anchor holds, ascending
+  };
+  void group_in_face_anchors();
+  // The pull of in-face anchor `anchor` (index into anchor_pins_) on the face it lies inside.
+  void add_anchor_pull(int anchor);
 
-  // Adds to `vertices` the free vertices that share a face with one of them.
+  // Brings the landmark's point of each anchor's face onto its landmark (within its slack), group by
+  // group: returns whether any vertex moved. A step moves the group's corners and the free vertices up
+  // to some rings about them as smoothly as they can move while moving each landmark's point by its
+  // miss (smooth_steps), each vertex walked along the target; of the ring counts tried, the step that
+  // shortens the misses, folds none of the faces about them more (by either reference or the strict
+  // count) and leaves those faces the lowest energy is taken (or else half the step, a quarter).
+  // Steps are exact to first order, so a few bring a miss of centimetres to rounding where no fold
+  // stops them.
+  bool centre_in_face_anchors();
+  bool centre_in_face_group(const InFaceGroup& group);
+
+  // Per anchor of `group` (rows): how far the landmark's point of its face must move, in the target's
+  // tangent plane there, onto the landmark (an anchor with slack beyond it: to kSlackAim of its slack);
+  // zero where it is within (an anchor without slack: within rounding of the landmark, kMetMiss).
+  Eigen::MatrixX3d excess_misses(const InFaceGroup& group) const;
+
+  // Steps for `group`'s corners and the free vertices up to `rings` rings about them (`vertices`,
+  // corners first) that move the landmark's point of each anchor's face by `misses` (to first order),
+  // with the least sum over template edges of the squared difference of their ends' steps, a vertex
+  // outside the rings (or held) not moving: a harmonic extension under the anchors' constraints. Many
+  // rings move the corners nearly together and shear each face about them little. Returns false
+  // when the system cannot be solved.
+  bool smooth_steps(const InFaceGroup& group, const Eigen::MatrixX3d& misses, int rings,
+                    std::vector<int>& vertices, std::vector<Eigen::Vector3d>& steps) const;
+
+  // Adds to `vertices` the free vertices that share a face with one of them, but the corners of faces
+  // anchors lie inside: those move only with their anchor's centring.
   void add_free_ring(std::vector<int>& vertices) const;
 
   // Where a vertex's image is.
@@ -277,6 +317,11 @@ class MapOptimizer {
   // them (before, after); returns whether they moved.
   bool drag(const std::vector<int>& vertices, const Eigen::Vector3d& step,
             const std::function<bool(const FoldTally&, const FoldTally&)>& take);
+
+  // The images of `vertices` each walked along the target by its step; none when a walk leaves the
+  // target (across a boundary).
+  std::optional<std::vector<Image>> walked(const std::vector<int>& vertices,
+                                           const std::vector<Eigen::Vector3d>& steps) const;
 
   // Lays face f again about the landmark of `anchor` (its pins, held_anchor_of) with the
   // template's neighbourhood of it: the face's corners, alone and with the free vertices up to
@@ -316,7 +361,19 @@ class MapOptimizer {
   std::vector<PinnedVertex> pinned_;
   std::vector<std::vector<int>> anchor_pins_;      // per anchor: its pins (indices into pinned_)
   std::vector<int> anchor_of_pin_;                 // per pin: its anchor's index in anchor_pins_
-  std::vector<std::vector<int>> in_face_anchors_;  // the pins of each anchor inside a face (or edge)
+  std::vector<InFaceGroup> in_face_groups_;
+  std::vector<char> free_;            // per vertex: is_free
+  std::vector<char> in_face_corner_;  // per vertex: a corner of a face an anchor lies inside
+  // An anchor inside a face pulling the landmark's point of its face onto the landmark.
+  struct AnchorPull {
+    int anchor = 0;                                  // index into anchor_pins_
+    Eigen::Vector3d bary = Eigen::Vector3d::Zero();  // the landmark's point, faces_ corner order
+    Eigen::Vector3d landmark = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // the target's at the landmark; zero: none
+    double slack = 0.0;
+    double stiffness = 0.0;  // energy per squared target length
+  };
+  std::vector<std::vector<AnchorPull>> anchor_pulls_;  // per template face; empty without in-face anchors
   std::vector<std::vector<int>> colours_;
   // Per vertex: whether it moved in the last sweep by more than a settled step, one lowering its
   // faces' energy by less than settled_drop_ (0 in the openings' sweeps).

@@ -25,7 +25,9 @@ std::vector<MappedCurve> trace_curves_through_remesh(const std::vector<FeatureCu
                                                      const std::vector<std::array<int, 3>>& faces);
 
 /// The distance from the remesh's point at the template's landmark `name` to the target's
-/// (PairMapping::anchors [0] and [1], input points on `source` and `target`).
+/// (PairMapping::anchors [0] and [1], input points on `source` and `target`); for a landmark inside
+/// a template face, across the normal of the target's face at the landmark: the chord triangle's
+/// offset along it is the remesh's, not the map's.
 double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors, const Mesh& source,
                      const Mesh& target, const Eigen::MatrixX3d& remesh_vertices);
 

@@ -319,11 +319,17 @@ std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& an
     const auto named = settings.anchor_slack_by_name.find(anchors[0].anchors[k].name);
     const double slack = named == settings.anchor_slack_by_name.end() ? settings.anchor_slack : named->second;
     const SurfacePoint& on_template = anchors[0].anchors[k].input_point;
-    const Eigen::Vector3d landmark = position(target, anchors[1].anchors[k].input_point);
+    const SurfacePoint& on_target = anchors[1].anchors[k].input_point;
+    const Eigen::Vector3d landmark = position(target, on_target);
+    const Eigen::Vector3d normal = to_eigen(target.calc_face_normal(target.face_handle(on_target.face)));
+    // A point at a vertex, located through a face (a helper anchor's), is a vertex anchor: its
+    // vertex is held, not pulled.
+    const std::vector<int> held = held_vertices(source, on_template);
     int corner = 0;
     for (VertexHandle v : source.fv_range(source.face_handle(on_template.face))) {
-      const double bary = on_template.bary[corner++];
-      if (bary > kHeldBarycentric) pinned.push_back({v.idx(), landmark, slack, static_cast<int>(k), bary});
+      const double bary = held.size() == 1 ? 1.0 : on_template.bary[corner];
+      if (on_template.bary[corner++] > kHeldBarycentric)
+        pinned.push_back({v.idx(), landmark, slack, static_cast<int>(k), bary, normal});
     }
   }
   return pinned;

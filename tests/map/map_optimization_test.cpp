@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 namespace xparam {
@@ -327,6 +328,15 @@ Eigen::Vector3d point_in_face(const std::vector<Eigen::Vector3d>& positions,
   return point;
 }
 
+// The unit normal of the target's face under the true image of the template face `corners` (the
+// target is the template moved: its faces are the template's).
+Eigen::Vector3d face_normal_at(const SimilarityCase& pair, const std::array<int, 3>& corners) {
+  const Eigen::Vector3d a = position(pair.target, pair.truth[corners[0]]);
+  return (position(pair.target, pair.truth[corners[1]]) - a)
+      .cross(position(pair.target, pair.truth[corners[2]]) - a)
+      .normalized();
+}
+
 // `pair`'s pins but those at `corners` (a template face's), then an anchor inside that face at
 // `bary`, whose landmark (returned) is where the true map puts that point: on the target, whose
 // face there is the template's, moved.
@@ -338,15 +348,25 @@ Eigen::Vector3d pin_inside_face(const SimilarityCase& pair, const std::array<int
     if (std::find(corners.begin(), corners.end(), pin.vertex) == corners.end()) pinned.push_back(pin);
   }
   const int anchor = static_cast<int>(pinned.size());
-  for (int c = 0; c < 3; ++c) pinned.push_back({corners[c], landmark, 0.0, anchor, bary[c]});
+  const Eigen::Vector3d normal = face_normal_at(pair, corners);
+  for (int c = 0; c < 3; ++c) pinned.push_back({corners[c], landmark, 0.0, anchor, bary[c], normal});
   return landmark;
 }
 
-// A fold of the face an anchor lies inside, whose three corners the anchor holds, so that no
-// corner may move alone: the face is laid again about the landmark, which opens it, and the
-// landmark's point of the face stays on the landmark. Held as three anchors of their own, the
-// corners stay where they are and so does the fold.
-TEST(MapOptimization, TheFaceAnInFaceAnchorFoldsIsLaidAgainAboutItsLandmark) {
+// The distance of the point at `bary` of the images of `corners` from `landmark`, across `normal`.
+double miss_across(const std::vector<Eigen::Vector3d>& positions, const std::array<int, 3>& corners,
+                   const Eigen::Vector3d& bary, const Eigen::Vector3d& landmark,
+                   const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d miss = point_in_face(positions, corners, bary) - landmark;
+  return (miss - miss.dot(normal) * normal).norm();
+}
+
+// A fold of the face an anchor lies inside (two corners swapped). Its corners move freely but for
+// the anchor's pull, so the openings move them (a corner towards its ring's centroid, or the face
+// laid again about the landmark) and the last centring puts the landmark's point of the face back
+// on the landmark. Held as three vertex anchors of their own, the corners stay where they are and so
+// does the fold.
+TEST(MapOptimization, TheFoldOfAnInFaceAnchorsFaceOpensAndItsLandmarkIsMet) {
   SimilarityCase pair(0.0);
   const std::array<int, 3> corners = pair.faces[400];
   const Eigen::Vector3d bary(0.2, 0.3, 0.5);
@@ -364,10 +384,11 @@ TEST(MapOptimization, TheFaceAnInFaceAnchorFoldsIsLaidAgainAboutItsLandmark) {
   EXPECT_EQ(laid.flipped_after, 0);
   EXPECT_EQ(folded(pair.faces, laid.locations, pair.target), 0);
   EXPECT_LT(laid.energy.back(), laid.energy.front());
-  EXPECT_LT((point_in_face(laid.positions, corners, bary) - landmark).norm(), 0.05 * pair.mean_edge);
-  for (int c = 0; c < 3; ++c) {
+  EXPECT_LT(miss_across(laid.positions, corners, bary, landmark, face_normal_at(pair, corners)),
+            1e-6 * pair.mean_edge);
+  for (int c = 0; c < 3; ++c) {  // no sweep relaxes them: measured 0.41 edges off at most
     const Eigen::Vector3d truth = position(pair.target, pair.truth[corners[c]]);
-    EXPECT_LT((laid.positions[corners[c]] - truth).norm(), 0.3 * pair.mean_edge);
+    EXPECT_LT((laid.positions[corners[c]] - truth).norm(), 0.5 * pair.mean_edge);
   }
 
   for (std::size_t k = anchor; k < pinned.size(); ++k) {
@@ -412,6 +433,73 @@ TEST(MapOptimization, AnInFaceAnchorsPointIsBroughtOntoItsLandmark) {
 
   const MapOptimizationResult result = optimize_map(pair.source, pair.faces, pair.target, pair.start, pinned);
   EXPECT_LT(landmark_miss(result.positions), 0.02 * pair.mean_edge);
+  // Across the target's normal, where the chord lies off a curved target, the landmark is met.
+  EXPECT_LT(miss_across(result.positions, corners, bary, landmark, face_normal_at(pair, corners)),
+            1e-6 * pair.mean_edge);
+  EXPECT_EQ(result.flipped_after, 0);
+  EXPECT_EQ(folded(pair.faces, result.locations, pair.target), 0);
+}
+
+// Two landmarks inside faces that share a corner (as FAUST's Lt. Radiale and Lt. Humeral Lateral
+// Epicn do on the SMPL-like template): the corner is held by both, so the two anchors are centred
+// as one group, and both points come onto their landmarks from a start that slid the corners and
+// the rings about them by 0.3 edges. Centred one after the other, the second anchor's drag moved the
+// shared corner and left the first one's point off its landmark.
+TEST(MapOptimization, TwoInFaceAnchorsSharingACornerBothMeetTheirLandmarks) {
+  SimilarityCase pair(0.0);
+  const std::array<int, 3> first = pair.faces[400];
+  std::optional<std::array<int, 3>> second;  // a face with first[0] and neither other corner of it
+  for (const auto& face : pair.faces) {
+    const auto has = [&](int v) { return std::find(face.begin(), face.end(), v) != face.end(); };
+    if (has(first[0]) && !has(first[1]) && !has(first[2])) {
+      second = face;
+      break;
+    }
+  }
+  ASSERT_TRUE(second.has_value());
+  const Eigen::Vector3d first_bary(0.5, 0.3, 0.2);
+  const int shared = static_cast<int>(std::find(second->begin(), second->end(), first[0]) - second->begin());
+  Eigen::Vector3d second_bary(0.2, 0.2, 0.2);
+  second_bary[shared] = 0.6;
+  std::vector<PinnedVertex> pinned;
+  for (const PinnedVertex& pin : pair.pinned) {
+    const auto at = [&](const std::array<int, 3>& face) {
+      return std::find(face.begin(), face.end(), pin.vertex) != face.end();
+    };
+    if (!at(first) && !at(*second)) pinned.push_back(pin);
+  }
+  std::array<Eigen::Vector3d, 2> landmarks;
+  const std::array<std::array<int, 3>, 2> faces = {first, *second};
+  const std::array<Eigen::Vector3d, 2> barys = {first_bary, second_bary};
+  for (int a = 0; a < 2; ++a) {
+    landmarks[a] = Eigen::Vector3d::Zero();
+    for (int c = 0; c < 3; ++c) landmarks[a] += barys[a][c] * position(pair.target, pair.truth[faces[a][c]]);
+    const Eigen::Vector3d normal = face_normal_at(pair, faces[a]);
+    for (int c = 0; c < 3; ++c)
+      pinned.push_back({faces[a][c], landmarks[a], 0.0, 100 + a, barys[a][c], normal});
+  }
+  // The layout's map slid both faces' corners and the ring about them.
+  std::vector<int> slid;
+  for (const auto& face : faces) {
+    for (int v : face) {
+      slid.push_back(v);
+      for (VertexHandle u : pair.source.vv_range(pair.source.vertex_handle(v))) slid.push_back(u.idx());
+    }
+  }
+  std::sort(slid.begin(), slid.end());
+  slid.erase(std::unique(slid.begin(), slid.end()), slid.end());
+  const Eigen::Vector3d normal = face_normal_at(pair, first);
+  const Eigen::Vector3d slide = 0.3 * pair.mean_edge * normal.unitOrthogonal();
+  const SurfaceWalker walker(pair.target);
+  for (int v : slid) pair.start[v] = walker.walk(pair.truth[v], slide).value();
+  ASSERT_EQ(folded(pair.faces, pair.start, pair.target), 0);
+
+  const MapOptimizationResult result = optimize_map(pair.source, pair.faces, pair.target, pair.start, pinned);
+  for (int a = 0; a < 2; ++a) {
+    EXPECT_LT(miss_across(result.positions, faces[a], barys[a], landmarks[a], face_normal_at(pair, faces[a])),
+              1e-6 * pair.mean_edge)
+        << "anchor " << a;
+  }
   EXPECT_EQ(result.flipped_after, 0);
   EXPECT_EQ(folded(pair.faces, result.locations, pair.target), 0);
 }

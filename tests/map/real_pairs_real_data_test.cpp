@@ -253,13 +253,12 @@ TEST(FaustPair, RigidFitsOfTheToesPutTheLeftToesOnTheirOwn) {
 }
 
 // FAUST 080 decimated to 6000 vertices against 000, with the 72 landmarks placed on the subjects'
-// scans (noisy, no fingertip but the middle one's). The first map folds at the right elbow; a
-// later layout removes those folds, and each map through the tips the first map carries, its first
-// layout folding at the elbow again, loses to it: the template's little and ring fingers were left
-// wound into whorls on the back of the target's left hand (looked at). Helper anchors behind the
-// losing map's own disagreeing corners remove its folds, and that map wins. Without helper anchors
-// (the case) the left hand stays tangled.
-TEST(FaustPair, HelpersBehindALosingRoundsTipsOpenTheLeftHand) {
+// scans (noisy, no fingertip but the middle one's), each inside a template face. Until session 42
+// those were held where the centring left them, up to 8.7 mm off (Rt. Axilla Post.), every round of
+// tips lost, and only helper anchors behind the losing map's tips opened the left hand (3.1 mm off
+// the truth, 13.7 without them). Met now, a round of tips wins on its own: the left hand is right,
+// the landmarks are met and nothing folds.
+TEST(FaustPair, ScanLandmarksInsideFacesAreMetAndTheLeftHandIsRight) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
   const auto [source, original, target] = load_decimated_faust_pair(data, "tr_reg_080");
@@ -267,34 +266,33 @@ TEST(FaustPair, HelpersBehindALosingRoundsTipsOpenTheLeftHand) {
   const AnchorSet on_source = read_anchors(scans / "tr_scan_000_landmarks.json");
   const AnchorSet on_target = read_anchors(scans / "tr_scan_080_landmarks.json");
   ASSERT_EQ(on_source.anchors.size(), 72u);
-  PairSettings helping;  // the default
-  PairSettings without_helpers = helping;
-  without_helpers.tip_anchors = false;
-  const PairMapping helped = map_pair(source.mesh, on_source, target.mesh, on_target, {}, helping);
-  const PairMapping tangled = map_pair(source.mesh, on_source, target.mesh, on_target, {}, without_helpers);
+  const PairMapping map = map_pair(source.mesh, on_source, target.mesh, on_target, {}, PairSettings{});
 
   // The left hand: template vertices within 12 cm of the middle of its knuckles' landmarks.
   Eigen::Vector3d knuckles = Eigen::Vector3d::Zero();
   for (const AnchorSpec& anchor : on_source.anchors)
     if (anchor.name == "Lt. Metacarpal Phal. II" || anchor.name == "Lt. Metacarpal Phal. V")
       knuckles += 0.5 * std::get<AnchorPosition>(anchor.location).point;
-  const auto left_hand_error = [&](const PairMapping& map) {
-    double sum = 0.0;
-    int count = 0;
-    for (VertexHandle v : source.mesh.vertices()) {
-      if ((position(source.mesh, v) - knuckles).norm() > 0.12) continue;
-      sum += (map.remesh_vertices.row(v.idx()).transpose() - position(original.mesh, v)).norm();
-      ++count;
-    }
-    return sum / count;
-  };
-  EXPECT_TRUE(tangled.extremity_anchors.empty());  // the case: every round of tips lost
-  EXPECT_FALSE(helped.extremity_anchors.empty());
-  EXPECT_FALSE(helped.tip_anchors.empty());
-  EXPECT_EQ(helped.quality.strictly_folded_faces, 0);
-  EXPECT_TRUE(helped.quality.flipped_faces.empty());
-  EXPECT_LT(helped.distortion.all.e_l2, tangled.distortion.all.e_l2);  // measured 1.044 against 1.055
-  EXPECT_LT(left_hand_error(helped), 0.5 * left_hand_error(tangled));  // measured 3.1 against 13.7 mm
+  double sum = 0.0;
+  int count = 0;
+  for (VertexHandle v : source.mesh.vertices()) {
+    if ((position(source.mesh, v) - knuckles).norm() > 0.12) continue;
+    sum += (map.remesh_vertices.row(v.idx()).transpose() - position(original.mesh, v)).norm();
+    ++count;
+  }
+  EXPECT_FALSE(map.extremity_anchors.empty());
+  EXPECT_EQ(map.quality.strictly_folded_faces, 0);
+  EXPECT_TRUE(map.quality.flipped_faces.empty());
+  EXPECT_LT(map.distortion.all.e_l2, 1.05);  // measured 1.034
+  EXPECT_LT(sum / count, 0.002);             // measured 1.2 mm
+  // Across the target's normal: 70 of 72 within a micrometre, the worst 0.01 mm off (measured).
+  ASSERT_EQ(map.anchor_miss.size(), map.anchors[0].anchors.size());
+  int met = 0;
+  for (std::size_t k = 0; k < on_source.anchors.size(); ++k) {
+    EXPECT_LT(map.anchor_miss[k], 1e-4) << map.anchors[0].anchors[k].name;
+    met += map.anchor_miss[k] < 1e-6;
+  }
+  EXPECT_GE(met, 66);
 }
 
 // Anchors "a0", "a1", ... at the vertex ids of a file, the first number of each line: a TOSCA
