@@ -122,7 +122,6 @@ void MapOptimizer::add_anchor_pull(int anchor) {
   if (anchor_pulls_.empty()) anchor_pulls_.resize(faces_.size());
   const PinnedVertex& first = pinned_[pins.front()];
   AnchorPull pull;
-  pull.anchor = anchor;
   for (int k : pins) {
     const auto& t = faces_[face];
     pull.bary[std::find(t.begin(), t.end(), pinned_[k].vertex) - t.begin()] = pinned_[k].bary;

@@ -366,7 +366,6 @@ class MapOptimizer {
   std::vector<char> in_face_corner_;  // per vertex: a corner of a face an anchor lies inside
   // An anchor inside a face pulling the landmark's point of its face onto the landmark.
   struct AnchorPull {
-    int anchor = 0;                                  // index into anchor_pins_
     Eigen::Vector3d bary = Eigen::Vector3d::Zero();  // the landmark's point, faces_ corner order
     Eigen::Vector3d landmark = Eigen::Vector3d::Zero();
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // the target's at the landmark; zero: none
