@@ -151,7 +151,7 @@ MapOptimizationResult MapOptimizer::run() {
     }
   }
   // The pulls leave each in-face anchor's point where its pull balances the distortion about it,
-  // a fraction of a millimetre off on a human: the last centring meets the landmarks (or slack).
+  // up to a few millimetres off on a human: the last centring meets the landmarks (or slack).
   // It can raise the energy a little, and is not recorded in it.
   centre_in_face_anchors();
   result.flipped_after = count_folded();

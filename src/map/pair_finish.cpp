@@ -30,7 +30,8 @@ double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>
   const SurfacePoint& landmark = all_anchors[1].anchors[k].input_point;
   Eigen::Vector3d miss = on_remesh - position(target, landmark);
   // Inside a face, the chord triangle lies off a curved target by its sagitta (1.5 mm on an ear
-  // of a 7k-vertex human) whatever the map: that part is not the map's miss.
+  // of a 7k-vertex human) whatever the map: that part is not the map's miss. (In a concave crease
+  // the offset is more than a sagitta, and this measure too lenient: docs/method.md.)
   if (held_vertices(source, on_template).size() > 1) {
     const Eigen::Vector3d normal = to_eigen(target.calc_face_normal(target.face_handle(landmark.face)));
     miss -= miss.dot(normal) * normal;
