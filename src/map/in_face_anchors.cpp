@@ -139,16 +139,21 @@ void MapOptimizer::add_anchor_pull(int anchor) {
   anchor_pulls_[face].push_back(pull);
 }
 
+Eigen::Vector3d MapOptimizer::anchor_pull_miss(const AnchorPull& pull, int f, int moved,
+                                               const Eigen::Vector3d& at) const {
+  Eigen::Vector3d miss = pull.landmark;
+  for (int c = 0; c < 3; ++c) {
+    const int v = faces_[f][c];
+    miss -= pull.bary[c] * (v == moved ? at : positions_[v]);
+  }
+  return miss - miss.dot(pull.normal) * pull.normal;
+}
+
 double MapOptimizer::anchor_pull_energy(int f, int moved, const Eigen::Vector3d& at) const {
   if (anchor_pulls_.empty() || anchor_pulls_[f].empty()) return 0.0;
-  const auto& t = faces_[f];
-  const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
   double energy = 0.0;
   for (const AnchorPull& pull : anchor_pulls_[f]) {
-    Eigen::Vector3d miss = pull.landmark;
-    for (int c = 0; c < 3; ++c) miss -= pull.bary[c] * point(t[c]);
-    miss -= miss.dot(pull.normal) * pull.normal;
-    const double excess = std::max(miss.norm() - pull.slack, 0.0);
+    const double excess = std::max(anchor_pull_miss(pull, f, moved, at).norm() - pull.slack, 0.0);
     energy += pull.stiffness * excess * excess;
   }
   return energy;
@@ -158,12 +163,8 @@ Eigen::Vector3d MapOptimizer::anchor_pull_gradient(int f, int corner, int moved,
                                                    const Eigen::Vector3d& at) const {
   Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
   if (anchor_pulls_.empty() || anchor_pulls_[f].empty()) return gradient;
-  const auto& t = faces_[f];
-  const auto point = [&](int v) -> const Eigen::Vector3d& { return v == moved ? at : positions_[v]; };
   for (const AnchorPull& pull : anchor_pulls_[f]) {
-    Eigen::Vector3d miss = pull.landmark;
-    for (int c = 0; c < 3; ++c) miss -= pull.bary[c] * point(t[c]);
-    miss -= miss.dot(pull.normal) * pull.normal;
+    const Eigen::Vector3d miss = anchor_pull_miss(pull, f, moved, at);
     const double length = miss.norm();
     if (!(length > pull.slack)) continue;
     gradient -= 2.0 * pull.stiffness * (length - pull.slack) * pull.bary[corner] * miss / length;
@@ -179,12 +180,11 @@ Eigen::MatrixX3d MapOptimizer::excess_misses(const InFaceGroup& group) const {
     // The chord triangle's point lies off a curved target by its sagitta, which no move along
     // the target removes: the miss counts in the tangent plane only.
     const Eigen::Vector3d& normal = pinned_[pins.front()].landmark_normal;
-    Eigen::Vector3d miss = landmark_miss(pins);
-    miss -= miss.dot(normal) * normal;
+    const Eigen::Vector3d full = landmark_miss(pins);
+    const Eigen::Vector3d miss = full - full.dot(normal) * normal;
     const double slack = pinned_[pins.front()].slack;
     const double length = miss.norm();
-    const bool within =
-        slack > 0.0 ? landmark_miss(pins).norm() <= slack || length <= kSlackAim * slack : length <= met;
+    const bool within = slack > 0.0 ? full.norm() <= slack || length <= kSlackAim * slack : length <= met;
     if (!within) excess.row(static_cast<Eigen::Index>(j)) = miss * (1.0 - kSlackAim * slack / length);
   }
   return excess;

@@ -149,6 +149,19 @@ class MapOptimizer {
   // d(coverage energy of face f)/d(position of its corner `corner`), `moved` at `at`.
   Eigen::Vector3d coverage_gradient(int f, int corner, int moved, const Eigen::Vector3d& at) const;
 
+  // An anchor inside a face pulling the landmark's point of its face onto the landmark.
+  struct AnchorPull {
+    Eigen::Vector3d bary = Eigen::Vector3d::Zero();  // the landmark's point, faces_ corner order
+    Eigen::Vector3d landmark = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // the target's at the landmark; zero: none
+    double slack = 0.0;
+    double stiffness = 0.0;  // energy per squared target length
+  };
+
+  // From the landmark's point of face f under `pull` (with `moved`, if >= 0, at `at`) to the landmark,
+  // across the target's normal there.
+  Eigen::Vector3d anchor_pull_miss(const AnchorPull& pull, int f, int moved, const Eigen::Vector3d& at) const;
+
   // The pull of each anchor inside face f on the landmark's point of the face, with `moved` (if >= 0)
   // at `at` (map/in_face_anchors.cpp): stiffness x (its miss beyond its slack)^2, the miss measured
   // across the target's normal at the landmark.
@@ -364,14 +377,6 @@ class MapOptimizer {
   std::vector<InFaceGroup> in_face_groups_;
   std::vector<char> free_;            // per vertex: is_free
   std::vector<char> in_face_corner_;  // per vertex: a corner of a face an anchor lies inside
-  // An anchor inside a face pulling the landmark's point of its face onto the landmark.
-  struct AnchorPull {
-    Eigen::Vector3d bary = Eigen::Vector3d::Zero();  // the landmark's point, faces_ corner order
-    Eigen::Vector3d landmark = Eigen::Vector3d::Zero();
-    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // the target's at the landmark; zero: none
-    double slack = 0.0;
-    double stiffness = 0.0;  // energy per squared target length
-  };
   std::vector<std::vector<AnchorPull>> anchor_pulls_;  // per template face; empty without in-face anchors
   std::vector<std::vector<int>> colours_;
   // Per vertex: whether it moved in the last sweep by more than a settled step, one lowering its

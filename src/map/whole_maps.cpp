@@ -322,15 +322,16 @@ std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& an
     const SurfacePoint& on_target = anchors[1].anchors[k].input_point;
     const Eigen::Vector3d landmark = position(target, on_target);
     const Eigen::Vector3d normal = to_eigen(target.calc_face_normal(target.face_handle(on_target.face)));
-    // A point at a vertex, located through a face (a helper anchor's), is a vertex anchor: its
-    // vertex is held, not pulled.
-    const std::vector<int> held = held_vertices(source, on_template);
+    const std::size_t first = pinned.size();
     int corner = 0;
     for (VertexHandle v : source.fv_range(source.face_handle(on_template.face))) {
-      const double bary = held.size() == 1 ? 1.0 : on_template.bary[corner];
-      if (on_template.bary[corner++] > kHeldBarycentric)
+      const double bary = on_template.bary[corner++];
+      if (bary > kHeldBarycentric)
         pinned.push_back({v.idx(), landmark, slack, static_cast<int>(k), bary, normal});
     }
+    // A point at a vertex, located through a face (a helper anchor's), is a vertex anchor: its
+    // vertex is held, not pulled.
+    if (pinned.size() == first + 1) pinned.back().bary = 1.0;
   }
   return pinned;
 }
