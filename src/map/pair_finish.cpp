@@ -2,6 +2,9 @@
 
 #include "map/map_optimization.h"
 
+#include <algorithm>
+#include <optional>
+
 namespace xparam {
 
 std::vector<MappedCurve> trace_curves_through_remesh(const std::vector<FeatureCurve>& curves, const Mesh& source,
@@ -18,8 +21,9 @@ std::vector<MappedCurve> trace_curves_through_remesh(const std::vector<FeatureCu
   return mapped;
 }
 
-double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors, const Mesh& source,
-                     const Mesh& target, const Eigen::MatrixX3d& remesh_vertices) {
+double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors,
+                     const Mesh& source, const Mesh& target, const Eigen::MatrixX3d& remesh_vertices,
+                     const ClosestPointIndex* on_target) {
   std::size_t k = 0;
   while (all_anchors[0].anchors[k].name != name) ++k;
   const SurfacePoint& on_template = all_anchors[0].anchors[k].input_point;
@@ -27,16 +31,18 @@ double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>
   int corner = 0;
   for (VertexHandle v : source.fv_range(source.face_handle(on_template.face)))
     on_remesh += on_template.bary[corner++] * remesh_vertices.row(v.idx()).transpose();
-  const SurfacePoint& landmark = all_anchors[1].anchors[k].input_point;
-  Eigen::Vector3d miss = on_remesh - position(target, landmark);
-  // Inside a face, the chord triangle lies off a curved target by its sagitta (1.5 mm on an ear
-  // of a 7k-vertex human) whatever the map: that part is not the map's miss. (In a concave crease
-  // the offset is more than a sagitta, and this measure too lenient: docs/method.md.)
-  if (held_vertices(source, on_template).size() > 1) {
-    const Eigen::Vector3d normal = to_eigen(target.calc_face_normal(target.face_handle(landmark.face)));
-    miss -= miss.dot(normal) * normal;
-  }
-  return miss.norm();
+  const Eigen::Vector3d landmark = position(target, all_anchors[1].anchors[k].input_point);
+  // Inside a face, the chord triangle lies off a curved target by its sagitta (1.5 mm on an ear of
+  // a 7k-vertex human) whatever the map: the target's point nearest the remesh's is the map's.
+  if (held_vertices(source, on_template).size() > 1)
+    return (on_target->closest(on_remesh).point - landmark).norm();
+  return (on_remesh - landmark).norm();
+}
+
+bool any_inside_a_face(const PlacedAnchors& on_template, const Mesh& source) {
+  return std::any_of(on_template.anchors.begin(), on_template.anchors.end(), [&](const PlacedAnchor& anchor) {
+    return held_vertices(source, anchor.input_point).size() > 1;
+  });
 }
 
 void measure_pair_mapping(PairMapping& mapping, const Mesh& source, const Mesh& target) {
@@ -49,9 +55,12 @@ void measure_pair_mapping(PairMapping& mapping, const Mesh& source, const Mesh& 
   }
   std::vector<std::string> names;
   mapping.anchor_miss.clear();
+  std::optional<ClosestPointIndex> on_target;
+  if (any_inside_a_face(mapping.anchors[0], source)) on_target.emplace(target);
   for (const PlacedAnchor& anchor : mapping.anchors[0].anchors) {
     names.push_back(anchor.name);
-    mapping.anchor_miss.push_back(miss_distance(anchor.name, mapping.anchors, source, target, mapping.remesh_vertices));
+    mapping.anchor_miss.push_back(miss_distance(anchor.name, mapping.anchors, source, target,
+                                                mapping.remesh_vertices, on_target ? &*on_target : nullptr));
   }
   mapping.distortion = measure_distortion(source_positions, image_positions, faces);
   mapping.quality = measure_remesh_quality(faces, image_positions, mapping.correspondence, target);

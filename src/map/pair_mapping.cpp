@@ -156,9 +156,13 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   } else if (!refusal.empty()) {
     result.anchors[1].warnings.push_back("target: " + refusal);
   }
-  for (ReleasedAnchor& anchor : result.released_anchors)
-    anchor.miss_distance =
-        miss_distance(anchor.name, plain.map.anchors, source, target, result.remesh_vertices);
+  if (!result.released_anchors.empty()) {
+    std::optional<ClosestPointIndex> on_target;
+    if (any_inside_a_face(plain.map.anchors[0], source)) on_target.emplace(target);
+    for (ReleasedAnchor& anchor : result.released_anchors)
+      anchor.miss_distance = miss_distance(anchor.name, plain.map.anchors, source, target,
+                                           result.remesh_vertices, on_target ? &*on_target : nullptr);
+  }
   result.seconds = seconds;
   result.seconds.total = total.lap();
   result.maps_made = settings.max_maps - work.maps_left;

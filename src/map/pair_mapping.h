@@ -226,7 +226,8 @@ struct PairMapping {
   UntangleSummary untangling;        ///< how far the remesh's vertices were slid to unfold it
   MapOptimizationSummary map_optimization;  ///< how optimizing the map on the target changed it
   /// Per placed anchor (anchors[0] order): how far the map lands from the target's landmark
-  /// (target units; 0 unless PairSettings::anchor_slack lets anchors move).
+  /// (target units; for an anchor inside a template face, from the target's point nearest the
+  /// remesh's: miss_distance in map/pair_finish.h).
   std::vector<double> anchor_miss;
   /// the template's feature curves on the target, in input order, traced on its surface
   /// (map/curve_tracing.h)

@@ -285,14 +285,16 @@ TEST(FaustPair, ScanLandmarksInsideFacesAreMetAndTheLeftHandIsRight) {
   EXPECT_TRUE(map.quality.flipped_faces.empty());
   EXPECT_LT(map.distortion.all.e_l2, 1.05);  // measured 1.034
   EXPECT_LT(sum / count, 0.002);             // measured 1.2 mm
-  // Across the target's normal: 70 of 72 within a micrometre, the worst 0.01 mm off (measured).
+  // From the target's point nearest the remesh's: 62 of 72 within a micrometre (measured; 8.7 mm
+  // worst in session 41), the worst 3.0 mm off (Lt. Dactylion, where the fingertip bends sharply under
+  // its face: met across the target's normal there, which the optimizer aims at).
   ASSERT_EQ(map.anchor_miss.size(), map.anchors[0].anchors.size());
   int met = 0;
   for (std::size_t k = 0; k < on_source.anchors.size(); ++k) {
-    EXPECT_LT(map.anchor_miss[k], 1e-4) << map.anchors[0].anchors[k].name;
+    EXPECT_LT(map.anchor_miss[k], 0.004) << map.anchors[0].anchors[k].name;
     met += map.anchor_miss[k] < 1e-6;
   }
-  EXPECT_GE(met, 66);
+  EXPECT_GE(met, 60);
 }
 
 // Anchors "a0", "a1", ... at the vertex ids of a file, the first number of each line: a TOSCA
