@@ -172,7 +172,7 @@ Eigen::Vector3d MapOptimizer::anchor_pull_gradient(int f, int corner, int moved,
   return gradient;
 }
 
-Eigen::MatrixX3d MapOptimizer::excess_misses(const InFaceGroup& group) const {
+Eigen::MatrixX3d MapOptimizer::excess_misses(const InFaceGroup& group, InFaceMiss measure) const {
   const double met = kMetMiss * std::sqrt(reference_.target_area());
   Eigen::MatrixX3d excess = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(group.anchors.size()), 3);
   for (std::size_t j = 0; j < group.anchors.size(); ++j) {
@@ -180,8 +180,12 @@ Eigen::MatrixX3d MapOptimizer::excess_misses(const InFaceGroup& group) const {
     // The chord triangle's point lies off a curved target by its sagitta, which no move along
     // the target removes: the miss counts in the tangent plane only.
     const Eigen::Vector3d& normal = pinned_[pins.front()].landmark_normal;
+    const Eigen::Vector3d& landmark = pinned_[pins.front()].landmark;
     const Eigen::Vector3d full = landmark_miss(pins);
-    const Eigen::Vector3d miss = full - full.dot(normal) * normal;
+    const Eigen::Vector3d miss =
+        measure == InFaceMiss::across_normal
+            ? Eigen::Vector3d(full - full.dot(normal) * normal)
+            : Eigen::Vector3d(landmark - target_surface_->closest(landmark - full).point);
     const double slack = pinned_[pins.front()].slack;
     const double length = miss.norm();
     const bool within = slack > 0.0 ? full.norm() <= slack || length <= kSlackAim * slack : length <= met;
@@ -253,19 +257,21 @@ bool MapOptimizer::smooth_steps(const InFaceGroup& group, const Eigen::MatrixX3d
   return true;
 }
 
-bool MapOptimizer::centre_in_face_anchors() {
+bool MapOptimizer::centre_in_face_anchors(InFaceMiss measure) {
+  if (measure == InFaceMiss::from_nearest_point && !in_face_groups_.empty() && !target_surface_)
+    target_surface_.emplace(target_);
   bool any = false;
-  for (const InFaceGroup& group : in_face_groups_) any = centre_in_face_group(group) || any;
+  for (const InFaceGroup& group : in_face_groups_) any = centre_in_face_group(group, measure) || any;
   return any;
 }
 
-bool MapOptimizer::centre_in_face_group(const InFaceGroup& group) {
+bool MapOptimizer::centre_in_face_group(const InFaceGroup& group, InFaceMiss measure) {
   if (group.corners.empty()) return false;
   bool moved = false;
   std::vector<int> moving;
   std::vector<Eigen::Vector3d> steps;
   for (int round = 0; round < kCentringRounds; ++round) {
-    const Eigen::MatrixX3d misses = excess_misses(group);
+    const Eigen::MatrixX3d misses = excess_misses(group, measure);
     const double before = misses.squaredNorm();
     if (!(before > 0.0)) break;
     bool stepped = false;
@@ -279,7 +285,7 @@ bool MapOptimizer::centre_in_face_group(const InFaceGroup& group) {
         std::vector<Image> here;
         for (int v : moving) here.push_back(image_of(v));
         for (std::size_t k = 0; k < moving.size(); ++k) place(moving[k], (*there)[k]);
-        if (!tally(around).folds_more_than(start) && excess_misses(group).squaredNorm() < before) {
+        if (!tally(around).folds_more_than(start) && excess_misses(group, measure).squaredNorm() < before) {
           for (int v : moving) moved_[v] = 1;
           stepped = true;
           break;

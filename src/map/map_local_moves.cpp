@@ -130,7 +130,7 @@ void MapOptimizer::centre_anchors() {
       if (!stepped) break;
     }
   }
-  centre_in_face_anchors();
+  centre_in_face_anchors(InFaceMiss::across_normal);
 }
 
 bool MapOptimizer::drag(const std::vector<int>& vertices, const Eigen::Vector3d& step,

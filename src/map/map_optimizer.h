@@ -281,13 +281,18 @@ class MapOptimizer {
   // count) and leaves those faces the lowest energy is taken (or else half the step, a quarter).
   // Steps are exact to first order, so a few bring a miss of centimetres to rounding where no fold
   // stops them.
-  bool centre_in_face_anchors();
-  bool centre_in_face_group(const InFaceGroup& group);
+  // How the miss is measured: across the target's normal at the landmark (as the pulls do), or from
+  // the target's point nearest the landmark's point of the face (as anchor_miss does,
+  // map/pair_finish.h): where the target bends sharply under the face, the point can sink into it
+  // along the normal and be millimetres off along the surface.
+  enum class InFaceMiss { across_normal, from_nearest_point };
+  bool centre_in_face_anchors(InFaceMiss measure);
+  bool centre_in_face_group(const InFaceGroup& group, InFaceMiss measure);
 
-  // Per anchor of `group` (rows): how far the landmark's point of its face must move, in the target's
-  // tangent plane there, onto the landmark (an anchor with slack beyond it: to kSlackAim of its slack);
-  // zero where it is within (an anchor without slack: within rounding of the landmark, kMetMiss).
-  Eigen::MatrixX3d excess_misses(const InFaceGroup& group) const;
+  // Per anchor of `group` (rows): how far the landmark's point of its face must move, by `measure`,
+  // onto the landmark (an anchor with slack beyond it: to kSlackAim of its slack); zero where it is
+  // within (an anchor without slack: within rounding of the landmark, kMetMiss).
+  Eigen::MatrixX3d excess_misses(const InFaceGroup& group, InFaceMiss measure) const;
 
   // Steps for `group`'s corners and the free vertices up to `rings` rings about them (`vertices`,
   // corners first) that move the landmark's point of each anchor's face by `misses` (to first order),
@@ -352,6 +357,7 @@ class MapOptimizer {
 
   const std::vector<std::array<int, 3>>& faces_;
   const Mesh& target_;
+  std::optional<ClosestPointIndex> target_surface_;  // over target_, built for InFaceMiss::from_nearest_point
   const SurfaceWalker walker_;  // over target_
   const RemeshReference reference_;
   const MapOptimizationSettings settings_;

@@ -285,13 +285,13 @@ TEST(FaustPair, ScanLandmarksInsideFacesAreMetAndTheLeftHandIsRight) {
   EXPECT_TRUE(map.quality.flipped_faces.empty());
   EXPECT_LT(map.distortion.all.e_l2, 1.05);  // measured 1.034
   EXPECT_LT(sum / count, 0.002);             // measured 1.2 mm
-  // From the target's point nearest the remesh's: 62 of 72 within a micrometre (measured; 8.7 mm
-  // worst in session 41), the worst 3.0 mm off (Lt. Dactylion, where the fingertip bends sharply under
-  // its face: met across the target's normal there, which the optimizer aims at).
+  // From the target's point nearest the remesh's: 63 of 72 within a micrometre (measured; 8.7 mm
+  // worst in session 41), the worst 2.2 mm off (Rt. Dactylion, where the fingertip bends sharply under
+  // its face; 3.0 mm for Lt. Dactylion before the last centring onto the nearest point).
   ASSERT_EQ(map.anchor_miss.size(), map.anchors[0].anchors.size());
   int met = 0;
   for (std::size_t k = 0; k < on_source.anchors.size(); ++k) {
-    EXPECT_LT(map.anchor_miss[k], 0.004) << map.anchors[0].anchors[k].name;
+    EXPECT_LT(map.anchor_miss[k], 0.0025) << map.anchors[0].anchors[k].name;
     met += map.anchor_miss[k] < 1e-6;
   }
   EXPECT_GE(met, 60);
