@@ -258,8 +258,8 @@ bool MapOptimizer::smooth_steps(const InFaceGroup& group, const Eigen::MatrixX3d
 }
 
 bool MapOptimizer::centre_in_face_anchors(InFaceMiss measure) {
-  if (measure == InFaceMiss::from_nearest_point && !in_face_groups_.empty() && !target_surface_)
-    target_surface_.emplace(target_);
+  if (measure == InFaceMiss::from_nearest_point && !in_face_groups_.empty())
+    target_surface();  // for excess_misses
   bool any = false;
   for (const InFaceGroup& group : in_face_groups_) any = centre_in_face_group(group, measure) || any;
   return any;

@@ -36,8 +36,12 @@ constexpr int kLayRings = 3;
 
 }  // namespace
 
+const ClosestPointIndex& MapOptimizer::target_surface() {
+  if (!target_surface_) target_surface_.emplace(target_);
+  return *target_surface_;
+}
+
 bool MapOptimizer::open_remaining_folds() {
-  std::optional<ClosestPointIndex> on_target;
   bool any = false;
   for (int pass = 0; pass < kFoldPasses; ++pass) {
     std::vector<int> folded;
@@ -51,13 +55,12 @@ bool MapOptimizer::open_remaining_folds() {
     if (folded.empty()) break;
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-    if (!on_target) on_target.emplace(target_);
     bool opened = false;
-    for (int v : corners) opened = move_towards_ring_centroid(v, *on_target) || opened;
+    for (int v : corners) opened = move_towards_ring_centroid(v, target_surface()) || opened;
     for (int f : folded) {
       if (!folded_by_either_count(f)) continue;
       const std::vector<int> anchor = held_anchor_of(f);
-      if (!anchor.empty()) opened = lay_anchor_face_again(f, anchor, *on_target) || opened;
+      if (!anchor.empty()) opened = lay_anchor_face_again(f, anchor, target_surface()) || opened;
     }
     if (!opened) break;
     any = true;

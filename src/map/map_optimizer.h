@@ -355,9 +355,13 @@ class MapOptimizer {
   // One try of open_remaining_folds for vertex v.
   bool move_towards_ring_centroid(int v, const ClosestPointIndex& on_target);
 
+  // The target's nearest-point index, built on first use: most maps need it for neither the
+  // openings nor the last centring.
+  const ClosestPointIndex& target_surface();
+
   const std::vector<std::array<int, 3>>& faces_;
   const Mesh& target_;
-  std::optional<ClosestPointIndex> target_surface_;  // over target_, built for InFaceMiss::from_nearest_point
+  std::optional<ClosestPointIndex> target_surface_;  // over target_, see target_surface()
   const SurfaceWalker walker_;  // over target_
   const RemeshReference reference_;
   const MapOptimizationSettings settings_;

@@ -21,6 +21,9 @@ std::vector<MappedCurve> trace_curves_through_remesh(const std::vector<FeatureCu
   return mapped;
 }
 
+namespace {
+
+// One of miss_distances. \pre on_target is given when the landmark lies inside a template face
 double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors,
                      const Mesh& source, const Mesh& target, const Eigen::MatrixX3d& remesh_vertices,
                      const ClosestPointIndex* on_target) {
@@ -39,10 +42,22 @@ double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>
   return (on_remesh - landmark).norm();
 }
 
-bool any_inside_a_face(const PlacedAnchors& on_template, const Mesh& source) {
-  return std::any_of(on_template.anchors.begin(), on_template.anchors.end(), [&](const PlacedAnchor& anchor) {
-    return held_vertices(source, anchor.input_point).size() > 1;
-  });
+}  // namespace
+
+std::vector<double> miss_distances(const std::vector<std::string>& names,
+                                   const std::array<PlacedAnchors, 2>& all_anchors, const Mesh& source,
+                                   const Mesh& target, const Eigen::MatrixX3d& remesh_vertices) {
+  const std::vector<PlacedAnchor>& on_template = all_anchors[0].anchors;
+  std::optional<ClosestPointIndex> on_target;
+  if (std::any_of(on_template.begin(), on_template.end(), [&](const PlacedAnchor& anchor) {
+        return held_vertices(source, anchor.input_point).size() > 1;
+      }))
+    on_target.emplace(target);
+  std::vector<double> misses;
+  for (const std::string& name : names)
+    misses.push_back(
+        miss_distance(name, all_anchors, source, target, remesh_vertices, on_target ? &*on_target : nullptr));
+  return misses;
 }
 
 void measure_pair_mapping(PairMapping& mapping, const Mesh& source, const Mesh& target) {
@@ -54,14 +69,8 @@ void measure_pair_mapping(PairMapping& mapping, const Mesh& source, const Mesh& 
     image_positions[v] = mapping.remesh_vertices.row(v).transpose();
   }
   std::vector<std::string> names;
-  mapping.anchor_miss.clear();
-  std::optional<ClosestPointIndex> on_target;
-  if (any_inside_a_face(mapping.anchors[0], source)) on_target.emplace(target);
-  for (const PlacedAnchor& anchor : mapping.anchors[0].anchors) {
-    names.push_back(anchor.name);
-    mapping.anchor_miss.push_back(miss_distance(anchor.name, mapping.anchors, source, target,
-                                                mapping.remesh_vertices, on_target ? &*on_target : nullptr));
-  }
+  for (const PlacedAnchor& anchor : mapping.anchors[0].anchors) names.push_back(anchor.name);
+  mapping.anchor_miss = miss_distances(names, mapping.anchors, source, target, mapping.remesh_vertices);
   mapping.distortion = measure_distortion(source_positions, image_positions, faces);
   mapping.quality = measure_remesh_quality(faces, image_positions, mapping.correspondence, target);
   mapping.coverage = measure_remesh_coverage(target, image_positions, faces);

@@ -24,20 +24,16 @@ std::vector<MappedCurve> trace_curves_through_remesh(const std::vector<FeatureCu
                                                      const std::vector<Eigen::Vector3d>& remesh,
                                                      const std::vector<std::array<int, 3>>& faces);
 
-/// The distance from the remesh's point at the template's landmark `name` to the target's
-/// (PairMapping::anchors [0] and [1], input points on `source` and `target`); for a landmark inside
-/// a template face, from the target's point nearest to the remesh's (`on_target` indexes the
-/// target): the chord triangle lies off a curved target, which is the remesh's offset, not the
-/// map's. Measured across the target's normal at the landmark instead (session 42), a point could
-/// count as met while millimetres off along the surface where the target bends sharply under its
-/// face (FAUST 000/030 [scan]: the left foot's Metatarsal Phal. V, 0 against 3.7 mm).
-/// \pre on_target is given when the landmark lies inside a template face
-double miss_distance(const std::string& name, const std::array<PlacedAnchors, 2>& all_anchors,
-                     const Mesh& source, const Mesh& target, const Eigen::MatrixX3d& remesh_vertices,
-                     const ClosestPointIndex* on_target);
-
-/// Whether an anchor of `on_template` lies inside a face of `source` (holds more than one corner).
-bool any_inside_a_face(const PlacedAnchors& on_template, const Mesh& source);
+/// For each of `names`, the distance from the remesh's point at the template's landmark to the
+/// target's (PairMapping::anchors [0] and [1], input points on `source` and `target`); for a
+/// landmark inside a template face, from the target's point nearest to the remesh's: the chord
+/// triangle lies off a curved target, which is the remesh's offset, not the map's. Measured across
+/// the target's normal at the landmark instead (session 42), a point could count as met while
+/// millimetres off along the surface where the target bends sharply under its face (FAUST 000/030
+/// [scan]: the left foot's Metatarsal Phal. V, 0 against 3.7 mm).
+std::vector<double> miss_distances(const std::vector<std::string>& names,
+                                   const std::array<PlacedAnchors, 2>& all_anchors, const Mesh& source,
+                                   const Mesh& target, const Eigen::MatrixX3d& remesh_vertices);
 
 /// Sets mapping.anchor_miss, distortion, quality, coverage and folds_by_anchor from its
 /// correspondence, remesh_vertices, anchors and layout (its template side), measured against

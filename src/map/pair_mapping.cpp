@@ -157,11 +157,11 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
     result.anchors[1].warnings.push_back("target: " + refusal);
   }
   if (!result.released_anchors.empty()) {
-    std::optional<ClosestPointIndex> on_target;
-    if (any_inside_a_face(plain.map.anchors[0], source)) on_target.emplace(target);
-    for (ReleasedAnchor& anchor : result.released_anchors)
-      anchor.miss_distance = miss_distance(anchor.name, plain.map.anchors, source, target,
-                                           result.remesh_vertices, on_target ? &*on_target : nullptr);
+    std::vector<std::string> names;
+    for (const ReleasedAnchor& anchor : result.released_anchors) names.push_back(anchor.name);
+    const std::vector<double> misses =
+        miss_distances(names, plain.map.anchors, source, target, result.remesh_vertices);
+    for (std::size_t k = 0; k < names.size(); ++k) result.released_anchors[k].miss_distance = misses[k];
   }
   result.seconds = seconds;
   result.seconds.total = total.lap();

@@ -29,8 +29,7 @@ struct EdgeCase {
                                                    Eigen::Vector3d(-0.05, -0.02, 0.0)};
     for (VertexHandle v : mesh.fv_range(mesh.face_handle(2)))
       remesh.row(v.idx()) = (point + spread[corner++]).transpose();
-    const ClosestPointIndex on_target(mesh);
-    return miss_distance("a", anchors, mesh, mesh, remesh, &on_target);
+    return miss_distances({"a"}, anchors, mesh, mesh, remesh).front();
   }
 };
 
