@@ -532,7 +532,11 @@ bool MapOptimizer::move_vertex(int v) {
   const Eigen::Vector2d gradient = in_plane(ring_gradient(v, references, x));
   if (!gradient.allFinite() || gradient.norm() == 0.0) return false;
 
-  // Finite-difference Hessian of the analytic gradient, made positive definite.
+  // Finite-difference Hessian of the analytic gradient, made positive definite. Not the exact one
+  // (session 44, docs/evaluation.md): where a face of the ring stands nearly edge-on to its reference
+  // normal, a step of h turns it against the reference and drops its gradient; the difference reads
+  // that as a steep wall and shortens the step, a barrier the energy itself lacks. With the exact
+  // Hessian the maps converged less far (cat/horse's first map: energy 5.28 -> 5.54).
   const double h = 1e-4 * mean_edge;
   Eigen::Matrix2d hessian;
   hessian.col(0) = (in_plane(ring_gradient(v, references, x + h * tangent.u)) - gradient) / h;
