@@ -230,8 +230,9 @@ class MapOptimizer {
   // then across the far side of each folded face of its ring (move_towards_ring_centroid).
   // A try is taken when it leaves fewer of the corner's faces folded by those two counts
   // together, none more by either or against the optimizer's second reference, and lowers their
-  // energy. Passes repeat while one opens a fold, at most kFoldPasses. Returns whether any corner
-  // moved.
+  // energy; or when it leaves fewer strictly folded and none more folded by the remesh's own count,
+  // whatever the energy (a sharp crease, where opening costs energy). Passes repeat while one opens
+  // a fold, at most kFoldPasses. Returns whether any corner moved.
   bool open_remaining_folds();
 
   // Whether face f is folded by the remesh's own count or the strict one.
