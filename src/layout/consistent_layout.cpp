@@ -304,7 +304,8 @@ class LayoutBuilder {
   }
 
   // The target vertices near the template's path between anchors a and b once the target is
-  // brought onto the template by `fit`, or by the similarity that best fits the anchors near a and b.
+  // brought onto the template by `given_fit`, or else by the similarity that best fits the anchors
+  // near a and b.
   PassableVertex corridor(int a, int b, const TracedPath& template_path,
                           const std::optional<Eigen::Matrix4d>& given_fit = std::nullopt) const {
     const Mesh& source = layout_.sides[0].mesh;
