@@ -254,12 +254,14 @@ class LayoutBuilder {
                       scratch_[side], passable);
   }
 
+  Eigen::Vector3d anchor_position(int side, int k) const {
+    return position(layout_.sides[side].mesh, layout_.sides[side].anchor_vertices[k]);
+  }
+
   // The frame of edge a-b on one side: a at the origin, b at (1, 0, 0), anchor c in the half-plane
   // y > 0 of z = 0 (a similarity).
   Eigen::Matrix4d edge_frame(int side, int a, int b, int c) const {
-    const auto at = [&](int k) {
-      return position(layout_.sides[side].mesh, layout_.sides[side].anchor_vertices[k]);
-    };
+    const auto at = [&](int k) { return anchor_position(side, k); };
     const Eigen::Vector3d along = at(b) - at(a);
     const Eigen::Vector3d x = along.normalized();
     const Eigen::Vector3d towards_c = at(c) - at(a);
@@ -275,9 +277,7 @@ class LayoutBuilder {
   // The anchor other than a and b nearest their midpoint on the template, among those off the line
   // through them (kEdgeFrameOffLine); -1 when there is none.
   int third_anchor(int a, int b) const {
-    const auto at = [&](int k) {
-      return position(layout_.sides[0].mesh, layout_.sides[0].anchor_vertices[k]);
-    };
+    const auto at = [&](int k) { return anchor_position(0, k); };
     const Eigen::Vector3d mid = 0.5 * (at(a) + at(b));
     const Eigen::Vector3d x = (at(b) - at(a)).normalized();
     int best = -1;
@@ -303,17 +303,9 @@ class LayoutBuilder {
     return path.vertices.empty() ? sum : Eigen::Vector2d(sum / static_cast<double>(path.vertices.size()));
   }
 
-  // The target vertices near the template's path between anchors a and b once the target is
-  // brought onto the template by `given_fit`, or else by the similarity that best fits the anchors
-  // near a and b.
-  PassableVertex corridor(int a, int b, const TracedPath& template_path,
-                          const std::optional<Eigen::Matrix4d>& given_fit = std::nullopt) const {
-    const Mesh& source = layout_.sides[0].mesh;
-    const Mesh& target = layout_.sides[1].mesh;
-    const auto anchor_position = [&](int side, int k) {
-      return position(layout_.sides[side].mesh, layout_.sides[side].anchor_vertices[k]);
-    };
-    // The anchors nearest a and b on the template (a and b among them).
+  // The similarity that best brings the target's anchors nearest a and b (a and b among them) onto
+  // the template's.
+  Eigen::Matrix4d fit_near(int a, int b) const {
     std::vector<std::pair<double, int>> by_distance;
     for (int k = 0; k < n_; ++k) {
       const double d = std::min((anchor_position(0, k) - anchor_position(0, a)).norm(),
@@ -327,7 +319,17 @@ class LayoutBuilder {
       from.col(i) = anchor_position(1, by_distance[i].second);
       to.col(i) = anchor_position(0, by_distance[i].second);
     }
-    const Eigen::Matrix4d fit = given_fit ? *given_fit : Eigen::Matrix4d(Eigen::umeyama(from, to, true));
+    return Eigen::umeyama(from, to, true);
+  }
+
+  // The target vertices near the template's path between anchors a and b once the target is
+  // brought onto the template by `given_fit`, or else by the similarity that best fits the anchors
+  // near a and b.
+  PassableVertex corridor(int a, int b, const TracedPath& template_path,
+                          const std::optional<Eigen::Matrix4d>& given_fit = std::nullopt) const {
+    const Mesh& source = layout_.sides[0].mesh;
+    const Mesh& target = layout_.sides[1].mesh;
+    const Eigen::Matrix4d fit = given_fit ? *given_fit : fit_near(a, b);
     std::vector<Eigen::Vector3d> polyline;
     double length = 0.0;
     for (const VertexHandle v : template_path.vertices) {

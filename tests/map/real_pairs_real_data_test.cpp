@@ -428,17 +428,24 @@ ShrecPair load_shrec_pair(const std::filesystem::path& data, const std::string& 
   return pair;
 }
 
-// The mean distance from the truth of a hand's template vertices, those beyond its wrist: x > 0.72
-// on the SMPL template for the left hand (side +1), x < -0.72 for the right (side -1).
-double hand_error(const ShrecPair& shrec, const PairMapping& map, double side) {
+// The mean distance from the truth of the template vertices whose position is in `region`.
+double region_error(const ShrecPair& shrec, const PairMapping& map,
+                    const std::function<bool(const Eigen::Vector3d&)>& region) {
   double sum = 0.0;
   int count = 0;
   for (VertexHandle v : shrec.source.mesh.vertices()) {
-    if (!(side * position(shrec.source.mesh, v).x() > 0.72)) continue;
+    if (!region(position(shrec.source.mesh, v))) continue;
     sum += test::truth_miss(map, shrec.target.mesh, shrec.truth, v.idx());
     ++count;
   }
+  EXPECT_GT(count, 100) << "the region holds too few template vertices to judge";
   return sum / count;
+}
+
+// The mean distance from the truth of a hand's template vertices, those beyond its wrist: x > 0.72
+// on the SMPL template for the left hand (side +1), x < -0.72 for the right (side -1).
+double hand_error(const ShrecPair& shrec, const PairMapping& map, double side) {
+  return region_error(shrec, map, [side](const Eigen::Vector3d& p) { return side * p.x() > 0.72; });
 }
 
 // SHREC'19 shape 1 with the 29 anthropometric landmarks on one layout: the layout's map squeezes
@@ -917,16 +924,9 @@ TEST(ShrecHuman, APathRoundTheOtherSideOfTheAnkleIsTracedAgain) {
   const auto& [source, target, truth, source_anchors, target_anchors] = shrec;
   const PairMapping map = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {});
   // The left foot's template vertices, below the ankle (SMPL: x > 0, y < -1.05).
-  double sum = 0.0;
-  int count = 0;
-  for (VertexHandle v : source.mesh.vertices()) {
-    const Eigen::Vector3d p = position(source.mesh, v);
-    if (!(p.x() > 0.0 && p.y() < -1.05)) continue;
-    sum += test::truth_miss(map, target.mesh, truth, v.idx());
-    ++count;
-  }
-  ASSERT_GT(count, 100);
-  EXPECT_LT(sum / count, 0.03) << "the left foot's mean distance to the truth, m";
+  const double left_foot_error =
+      region_error(shrec, map, [](const Eigen::Vector3d& p) { return p.x() > 0.0 && p.y() < -1.05; });
+  EXPECT_LT(left_foot_error, 0.03) << "the left foot's mean distance to the truth, m";
   EXPECT_LT(map.distortion.all.e_l2, 1.15);
   EXPECT_EQ(map.quality.strictly_folded_faces, 0);
   EXPECT_TRUE(map.quality.flipped_faces.empty());
