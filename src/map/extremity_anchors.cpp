@@ -173,6 +173,21 @@ FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<
   return farthest;
 }
 
+// Whether `map` squeezes template vertex s towards anchor k: its image lies nearer the anchor,
+// relative to the target's size (target_scale: sqrt(area)), than kSqueezed times the vertex itself
+// does on the template (source_scale).
+bool squeezed_towards(const TipsAndAnchors& source, const TipsAndAnchors& target, const FirstMap& map, int s,
+                      std::size_t k, double source_scale, double target_scale) {
+  const double from_anchor = (position(source.mesh, source.mesh.vertex_handle(s)) -
+                              position(source.mesh, source.mesh.vertex_handle(source.anchors[k])))
+                                 .norm() /
+                             source_scale;
+  const double image_from_anchor =
+      (map.images[s] - position(target.mesh, target.mesh.vertex_handle(target.anchors[k]))).norm() /
+      target_scale;
+  return image_from_anchor < kSqueezed * from_anchor;
+}
+
 // Tips matched by their distances to the references near them (match_extremities_by_distances):
 // the references lie within kDescriptorRadius sqrt(area) of one of the two tips (a hand's span);
 // a pair is matched below kMaxDescriptorMismatch, and under kDescriptorMargin times the mismatch
@@ -398,17 +413,10 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
   const FarthestInCells on_source = farthest_in_cells(source, matched_source, source_scale);
   const FarthestInCells on_target = farthest_in_cells(target, matched_target, target_scale);
   const TipMismatch mismatch(source.mesh, target.mesh, map);
-  // Whether the first map squeezes template vertex s towards anchor k: its image lies nearer the
-  // anchor, relative to the target's size, than kSqueezed times the vertex itself does on the
-  // template. Elsewhere the first map has put the protrusion where it belongs and its
-  // through-map matches (or none) stand.
+  // Elsewhere than where the first map squeezes, it has put the protrusion where it belongs and
+  // its through-map matches (or none) stand.
   const auto squeezed = [&](int s, std::size_t k) {
-    const double from_anchor =
-        (position(source.mesh, source.mesh.vertex_handle(s)) -
-         position(source.mesh, source.mesh.vertex_handle(source.anchors[k]))).norm() / source_scale;
-    const double image_from_anchor =
-        (map.images[s] - position(target.mesh, target.mesh.vertex_handle(target.anchors[k]))).norm() / target_scale;
-    return image_from_anchor < kSqueezed * from_anchor;
+    return squeezed_towards(source, target, map, s, k, source_scale, target_scale);
   };
   // Whether a matched tip lies within `distance` (a fraction of sqrt(area)) of anchor k: the limb
   // there already has a helper (the hand may span the cells of two wrist landmarks), and the
@@ -446,6 +454,20 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
       by_cell.back().rival_target = on_target.next_tip[k];
   }
   return by_cell;
+}
+
+std::vector<ExtremityAnchor> outside_squeezed_cells(const TipsAndAnchors& source,
+                                                    const TipsAndAnchors& target, const FirstMap& map,
+                                                    std::vector<ExtremityAnchor> through_map) {
+  const double source_scale = std::sqrt(surface_area(source.mesh));
+  const double target_scale = std::sqrt(surface_area(target.mesh));
+  const FarthestInCells farthest = farthest_in_cells(source, {}, source_scale);
+  std::erase_if(through_map, [&](const ExtremityAnchor& tip) {
+    const int k = source.found.cells.cell[std::get<AnchorVertex>(tip.specs[0].location).index];
+    const int cell_tip = farthest.tip[k];
+    return cell_tip >= 0 && squeezed_towards(source, target, map, cell_tip, k, source_scale, target_scale);
+  });
+  return through_map;
 }
 
 ExtremityAnchor matched_with_rival(const ExtremityAnchor& tip, const Mesh& source, const Mesh& target,

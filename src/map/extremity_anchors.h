@@ -111,6 +111,19 @@ struct TipsAndAnchors {
   double reach = 0.0;               ///< the tips' reach, as a fraction of sqrt(area)
 };
 
+/// `through_map` (match_extremities) without the pairs whose template tip lies in the geodesic
+/// Voronoi cell of a landmark whose farthest template tip the first map squeezes towards the
+/// landmark (as match_extremities_by_cell judges it). Such a map has drawn the whole hand into the
+/// wrist, and which target fingertip a template fingertip's image lies nearest there is chance
+/// (SHREC'19 15 with the 29 anthropometric landmarks: the left middle fingertip's image 0.35 times
+/// as far from the left wrist as the fingertip is on the template, and the left thumb paired with
+/// the target's index finger through it).
+/// The cell then matches its farthest tips, and the next round of tips matches the rest through a
+/// map that no longer squeezes them.
+std::vector<ExtremityAnchor> outside_squeezed_cells(const TipsAndAnchors& source,
+                                                    const TipsAndAnchors& target, const FirstMap& map,
+                                                    std::vector<ExtremityAnchor> through_map);
+
 /// Tips left out by `matched`, matched through the landmark whose geodesic Voronoi cell holds
 /// them. For each anchor whose cell holds no matched tip on either mesh: the unmatched tip
 /// farthest from the anchor on each mesh; where only one mesh has a tip there and it lies over

@@ -109,6 +109,23 @@ TEST_F(SqueezedSpike, TheLandmarksCellMatchesTheSqueezedTip) {
   EXPECT_TRUE(match_extremities_by_cell(side, side, {images, faces}, {}, {}).empty());
 }
 
+// A pair matched through a map that squeezes the spike into its landmark is dropped: its cell's
+// farthest tip, the spike's, lies nearer the landmark through the map than half as far as on the
+// template. The +z corner's pair, in the other cell, stands; through the identity both stand.
+TEST_F(SqueezedSpike, PairsThroughTheMapInASqueezedCellAreDropped) {
+  std::vector<Eigen::Vector3d> identity;
+  for (VertexHandle v : mesh.vertices()) identity.push_back(position(mesh, v));
+  const std::vector<ExtremityAnchor> pairs =
+      match_extremities(mesh, ends.tips, mesh, ends.tips, {identity, faces}, {}, 0.1);
+  ASSERT_EQ(pairs.size(), 2u);
+  const TipsAndAnchors side{mesh, ends, anchors, reach};
+  ASSERT_NE(ends.cells.cell[0], ends.cells.cell[4]);
+  const std::vector<ExtremityAnchor> kept = outside_squeezed_cells(side, side, {images, faces}, pairs);
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(std::get<AnchorVertex>(kept[0].specs[0].location).index, 4);
+  EXPECT_EQ(outside_squeezed_cells(side, side, {identity, faces}, pairs).size(), 2u);
+}
+
 // Where the target's limb ends in a blob (an end without a tip: a fist), the cell's farthest end
 // stands in for the tip of the template's squeezed spike; without the end, nothing is matched.
 TEST_F(SqueezedSpike, ABlobsEndStandsInForATip) {

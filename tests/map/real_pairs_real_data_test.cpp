@@ -186,46 +186,36 @@ double truth_error(const PairMapping& map, const DecimatedFaustPair& pair,
 
 // FAUST 010 decimated to 6000 vertices (another connectivity) against 000, with the 29
 // anthropometric landmarks, as the evaluation maps it (the target's landmarks are the registration's
-// points). The first map squeezes the left hand, and one of its fingertips is matched through it
-// with the tip of another finger, 16 cm from its own; the map through that tip still beats the
-// first (E_L2 2.00 -> 1.11) and winds the template's fingers on the back of the target's hand
-// (looked at). The map without the doubtful tips, the rest matched again, replaces it: measured
-// E_L2 1.109 -> 1.029, mean distance to the truth 1.40 -> 0.61% of sqrt(area), 15 tips instead of 9
-// (a second round finds the fingers once the hand is open), every one within 3.5 cm of its true
-// image (the crown's; the fingertips within 3 mm) where the wrong one is 16 cm off.
-TEST(FaustPair, ADoubtfulTipMatchGivesWayToAMapWithoutIt) {
+// points). The first map squeezes the left hand, and one of its fingertips was matched through it
+// with the tip of another finger, 16 cm from its own; the map through that tip beat the first
+// (E_L2 2.00 -> 1.11) and wound the template's fingers on the back of the target's hand (looked
+// at), and only the map made again without it mended the hand (retry_doubtful_tips). No pair is
+// taken through a cell the map squeezes now (outside_squeezed_cells), and without any retry every
+// tip lies within 5 cm of its true image (measured: E_L2 1.029, mean distance to the truth 0.61% of
+// sqrt(area), as the retry made it; 1.40% through the wrong tip).
+TEST(FaustPair, NoFingertipIsPairedThroughTheSqueezedHand) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
   const DecimatedFaustPair pair = load_decimated_faust_pair(data, "tr_reg_010");
   const auto& [source, original, target] = pair;
-  PairSettings retrying;  // the default
-  PairSettings keeping = retrying;
-  keeping.retry_doubtful_tips = false;
-  const PairMapping kept = map_with_anthropometric_landmarks(data, pair, keeping);
-  const PairMapping retried = map_with_anthropometric_landmarks(data, pair, retrying);
+  PairSettings without_retries;
+  without_retries.retry_doubtful_tips = false;
+  const PairMapping map = map_with_anthropometric_landmarks(data, pair, without_retries);
 
   // How far the farthest tip's target point lies from its template tip's true image.
-  const auto worst_tip = [&](const std::vector<ExtremityAnchor>& tips) {
-    double worst = 0.0;
-    for (const ExtremityAnchor& tip : tips) {
-      const int on_template = std::get<AnchorVertex>(tip.specs[0].location).index;
-      const int on_target_mesh = std::get<AnchorVertex>(tip.specs[1].location).index;
-      worst = std::max(worst, (position(target.mesh, VertexHandle(on_target_mesh)) -
-                               position(original.mesh, VertexHandle(on_template)))
-                                  .norm());
-    }
-    return worst;
-  };
-  EXPECT_GT(worst_tip(kept.extremity_anchors), 0.10);  // the case: a tip matched with another finger's
-  EXPECT_LT(worst_tip(retried.extremity_anchors), 0.05);
-  // The map says which tip it was made without: the wrong one.
-  EXPECT_TRUE(kept.doubtful_tips.empty());
-  ASSERT_EQ(retried.doubtful_tips.size(), 1u);
-  EXPECT_GT(worst_tip(retried.doubtful_tips), 0.10);
-  EXPECT_LT(truth_error(retried, pair), 0.008);
-  EXPECT_LT(truth_error(retried, pair), 0.6 * truth_error(kept, pair));
-  EXPECT_LT(retried.distortion.all.e_l2, kept.distortion.all.e_l2);
-  EXPECT_EQ(retried.quality.strictly_folded_faces, 0);
+  double worst_tip = 0.0;
+  for (const ExtremityAnchor& tip : map.extremity_anchors) {
+    const int on_template = std::get<AnchorVertex>(tip.specs[0].location).index;
+    const int on_target_mesh = std::get<AnchorVertex>(tip.specs[1].location).index;
+    worst_tip = std::max(worst_tip, (position(target.mesh, VertexHandle(on_target_mesh)) -
+                                     position(original.mesh, VertexHandle(on_template)))
+                                        .norm());
+  }
+  EXPECT_FALSE(map.extremity_anchors.empty());
+  EXPECT_LT(worst_tip, 0.05);
+  EXPECT_LT(truth_error(map, pair), 0.008);
+  EXPECT_LT(map.distortion.all.e_l2, 1.05);
+  EXPECT_EQ(map.quality.strictly_folded_faces, 0);
 }
 
 // FAUST 010 decimated as above, with the 29 anthropometric landmarks: the first map turns the left
@@ -448,6 +438,15 @@ double hand_error(const ShrecPair& shrec, const PairMapping& map, double side) {
   return region_error(shrec, map, [side](const Eigen::Vector3d& p) { return side * p.x() > 0.72; });
 }
 
+// How far a tip's target point lies from its template tip's true image, target units.
+double tip_off_truth(const ShrecPair& shrec, const ExtremityAnchor& tip) {
+  const int on_template = std::get<AnchorVertex>(tip.specs[0].location).index;
+  const int on_target = std::get<AnchorVertex>(tip.specs[1].location).index;
+  return (position(shrec.target.mesh, VertexHandle(on_target)) -
+          position(shrec.target.mesh, VertexHandle(shrec.truth[on_template])))
+      .norm();
+}
+
 // SHREC'19 shape 1 with the 29 anthropometric landmarks on one layout: the layout's map squeezes
 // the unanchored hands and feet (E_L2 254) and folds 2 faces by the strict count; optimized on
 // the target it stretches little (E_L2 measured 1.84), folds no more by either count, keeps the
@@ -619,12 +618,12 @@ TEST(ShrecHuman, ASecondRoundOfTipsFindsTheThumb) {
   EXPECT_EQ(second.quality.strictly_folded_faces, 0);
 }
 
-// SHREC'19 shape 1 with the 29 anthropometric landmarks: the first round pairs a left fingertip
-// with a target tip 9 cm from its own (another finger's); the map through it wins and keeps 1
-// strictly folded face (E_L2 1.23). Of its tips two missed by more than twice the reach; the map
-// without the one that missed most wins in turn (E_L2 1.13, then 1.11 after the second round, no
-// fold), where the map without both folds 5 faces and loses.
-TEST(ShrecHuman, TheMapWithoutTheWorstMatchedTipReplacesTheOne) {
+// SHREC'19 shape 1 with the 29 anthropometric landmarks: the first round paired a left fingertip
+// with a target tip 9 cm from its own (another finger's), through a first map that squeezes the
+// left hand; the map through it won and kept 1 strictly folded face (E_L2 1.23), and the map made
+// again without it replaced it. No pair is taken through that cell now, and every tip of the map
+// lands within 8 cm of its true image (measured: E_L2 1.09, no fold).
+TEST(ShrecHuman, EveryTipOfTheMapLiesOnItsOwnFinger) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
   const ShrecPair shrec = load_shrec_pair(data, "1", "smpl_anthropometry_landmark_indices.json");
@@ -633,18 +632,9 @@ TEST(ShrecHuman, TheMapWithoutTheWorstMatchedTipReplacesTheOne) {
       map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {}, PairSettings{});
   EXPECT_EQ(map.quality.strictly_folded_faces, 0);
   EXPECT_LT(map.distortion.all.e_l2, 1.15);
-  const auto off_truth = [&](const ExtremityAnchor& tip) {
-    const int on_template = std::get<AnchorVertex>(tip.specs[0].location).index;
-    const int on_target = std::get<AnchorVertex>(tip.specs[1].location).index;
-    return (position(target.mesh, VertexHandle(on_target)) -
-            position(target.mesh, VertexHandle(truth[on_template])))
-        .norm();
-  };
+  EXPECT_FALSE(map.extremity_anchors.empty());
   for (const ExtremityAnchor& tip : map.extremity_anchors)
-    EXPECT_LT(off_truth(tip), 0.08) << tip.specs[0].name;
-  // The tip left out is reported: the wrong fingertip.
-  ASSERT_EQ(map.doubtful_tips.size(), 1u);
-  EXPECT_GT(off_truth(map.doubtful_tips[0]), 0.08);
+    EXPECT_LT(tip_off_truth(shrec, tip), 0.08) << tip.specs[0].name;
 }
 
 // SHREC'19 shape 18 (a left-right symmetric base mesh with closed fingers) with the 29
@@ -694,23 +684,24 @@ TEST(ShrecHuman, AFingertipNearlyAsFarFromTheWristRivalsTheCellsMatch) {
   };
   EXPECT_GE(mirrored(kept)[1], 1);  // the case: a left fingertip paired with another finger's
   EXPECT_EQ(mirrored(retried)[1], 0);
-  EXPECT_GE(mirrored(retried)[0], 4);  // measured 5
+  EXPECT_GE(mirrored(retried)[0], 3);  // measured 3 (5 before session 46: the index and ring fingertips of
+                                       // one hand are now left unpaired)
   ASSERT_FALSE(retried.doubtful_tips.empty());
   EXPECT_EQ(std::get<AnchorVertex>(retried.doubtful_tips.back().specs[0].location).index, 2445);
   EXPECT_LT(retried.distortion.all.e_l2, kept.distortion.all.e_l2);
   EXPECT_EQ(retried.quality.strictly_folded_faces, 0);
 }
 
-// SHREC'19 shape 1 with the 29 anthropometric landmarks, the first round's map kept through a
-// wrong fingertip (retry_doubtful_tips off; the map without it wins by default, and then so does
-// its second round): the second round's map through the tips loses to the first round's (E_L2
-// 1.45 against 1.23, 5 strictly folded faces against 1). It folds, but a trial's later layouts are
-// made only when its first layout wins, so the round costs one map (it cost three, 7 s of this
-// pair's 11) and changes nothing.
+// SHREC'19 shape 21 (loose parts, dropped by the scan intake) with the 73 CAESAR landmarks, without
+// the retries of doubtful tips: the second round's map through its 2 tips folds 1 face and loses to
+// the first round's (E_L2 1.041 against 1.047, no fold). It folds, but a trial's later layouts are
+// made only when its first layout wins, so the round costs one map and changes nothing. (Until
+// session 46 the case was SHREC'19 1 with the 29 anthropometric landmarks, whose first round then
+// kept a wrong fingertip; that round cost three maps, 7 s of the pair's 11, before the rule.)
 TEST(ShrecHuman, ALosingRoundOfTipsMakesOneMap) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
-  const ShrecPair shrec = load_shrec_pair(data, "1", "smpl_anthropometry_landmark_indices.json");
+  const ShrecPair shrec = load_shrec_pair(data, "21", "smpl_caesar_landmark_indices.json", true);
   const auto& [source, target, truth, source_anchors, target_anchors] = shrec;
   PairSettings two_rounds;
   two_rounds.retry_doubtful_tips = false;
@@ -928,6 +919,44 @@ TEST(ShrecHuman, APathRoundTheOtherSideOfTheAnkleIsTracedAgain) {
       region_error(shrec, map, [](const Eigen::Vector3d& p) { return p.x() > 0.0 && p.y() < -1.05; });
   EXPECT_LT(left_foot_error, 0.03) << "the left foot's mean distance to the truth, m";
   EXPECT_LT(map.distortion.all.e_l2, 1.15);
+  EXPECT_EQ(map.quality.strictly_folded_faces, 0);
+  EXPECT_TRUE(map.quality.flipped_faces.empty());
+}
+
+// SHREC'19 shape 15 (loose parts, dropped by the scan intake) with the 29 anthropometric landmarks,
+// which hold each hand at the wrist alone: the first map draws the hands into the wrists, and the
+// tips matched through it paired the template's left thumb with the target's index finger and the
+// right little finger with the index (the left hand's template vertices 1.35 cm from their truth
+// on average, the right's 7.8 cm, its fingers squeezed into spikes; looked at). With no pair taken
+// through a cell the map squeezes, the cells match the middle fingertips and the next round the
+// rest (measured: 0.78 and 3.1 cm, E_L2 1.073 -> 1.038; the left hand's five fingers on their own).
+TEST(ShrecHuman, NoFingertipIsPairedThroughAMapThatSqueezesTheHand) {
+  const std::filesystem::path data = test::shared_data_dir();
+  if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
+  const ShrecPair shrec = load_shrec_pair(data, "15", "smpl_anthropometry_landmark_indices.json", true);
+  const auto& [source, target, truth, source_anchors, target_anchors] = shrec;
+  const PairMapping map = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {});
+  constexpr double kLeft = 1.0;
+  constexpr double kRight = -1.0;
+  EXPECT_LT(hand_error(shrec, map, kLeft), 0.01) << "the left hand's mean distance to the truth, m";
+  EXPECT_LT(hand_error(shrec, map, kRight), 0.05) << "the right hand's mean distance to the truth, m";
+  // The second round paired the right little fingertip with the index through the first round's map;
+  // the map made again without it wins, and reports it.
+  ASSERT_EQ(map.doubtful_tips.size(), 1u);
+  EXPECT_GT(tip_off_truth(shrec, map.doubtful_tips[0]), 0.05);
+  // Every tip of the left hand (template x > 0.72) lies on its own finger. The right hand's are
+  // still one finger over, its cell's farthest tip being the index on the target (looked at: the
+  // ring finger a spike, the thumb not drawn out).
+  int left_tips = 0;
+  for (const ExtremityAnchor& tip : map.extremity_anchors) {
+    if (!(position(source.mesh, VertexHandle(std::get<AnchorVertex>(tip.specs[0].location).index)).x() >
+          0.72))
+      continue;
+    ++left_tips;
+    EXPECT_LT(tip_off_truth(shrec, tip), 0.02) << tip.specs[0].name;
+  }
+  EXPECT_EQ(left_tips, 5);
+  EXPECT_LT(map.distortion.all.e_l2, 1.05);
   EXPECT_EQ(map.quality.strictly_folded_faces, 0);
   EXPECT_TRUE(map.quality.flipped_faces.empty());
 }
