@@ -9,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <queue>
 #include <utility>
 #include <variant>
@@ -141,7 +142,47 @@ struct FarthestInCells {
   std::vector<double> end_distance;
 };
 
-FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<int>& matched_tips, double scale) {
+// Landmarks nearer each other than this fraction of sqrt(area) on both meshes hold one limb between
+// them, and their cells are searched as one. SHREC'19 15's right wrist and ulnar styloid, 0.03
+// sqrt(area) apart, split the hand between their cells: the middle fingertip in the wrist's on the
+// template and in the styloid's on the target, and the wrist's cell paired the template's middle
+// fingertip with the target's index one, the farthest it held.
+constexpr double kOneLimbLandmarks = 0.05;
+
+}  // namespace
+
+std::vector<int> limb_groups(const TipsAndAnchors& source, const TipsAndAnchors& target) {
+  const std::size_t n = source.anchors.size();
+  std::vector<int> group(n);
+  std::iota(group.begin(), group.end(), 0);
+  const auto near = [&](const TipsAndAnchors& side, std::size_t a, std::size_t b, double scale) {
+    return (position(side.mesh, side.mesh.vertex_handle(side.anchors[a])) -
+            position(side.mesh, side.mesh.vertex_handle(side.anchors[b])))
+               .norm() < kOneLimbLandmarks * scale;
+  };
+  const double source_scale = std::sqrt(surface_area(source.mesh));
+  const double target_scale = std::sqrt(surface_area(target.mesh));
+  // Union-find over the pairs near on both meshes, each group's root its lowest-numbered anchor.
+  const auto root = [&](int k) {
+    while (group[k] != k) k = group[k];
+    return k;
+  };
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = a + 1; b < n; ++b) {
+      if (!near(source, a, b, source_scale) || !near(target, a, b, target_scale)) continue;
+      const int ra = root(static_cast<int>(a));
+      const int rb = root(static_cast<int>(b));
+      group[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  }
+  for (std::size_t k = 0; k < n; ++k) group[k] = root(static_cast<int>(k));
+  return group;
+}
+
+namespace {
+
+FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<int>& matched_tips,
+                                  double scale, const std::vector<int>& limb) {
   const AnchorVoronoi& cells = side.found.cells;
   const std::size_t n = side.anchors.size();
   FarthestInCells farthest{std::vector<int>(n, -1), std::vector<double>(n, 0.0),
@@ -150,7 +191,7 @@ FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<
   // In vertex order: ties go to the lower index.
   for (int v : side.found.tips) {
     if (std::find(matched_tips.begin(), matched_tips.end(), v) != matched_tips.end()) continue;
-    const int k = cells.cell[v];
+    const int k = limb[cells.cell[v]];
     const double d = cells.distance[v] / scale;
     if (farthest.tip[k] < 0 || d > farthest.tip_distance[k]) {
       farthest.next_tip[k] = farthest.tip[k];
@@ -163,7 +204,7 @@ FarthestInCells farthest_in_cells(const TipsAndAnchors& side, const std::vector<
     }
   }
   for (int v : side.found.ends) {
-    const int k = cells.cell[v];
+    const int k = limb[cells.cell[v]];
     const double d = cells.distance[v] / scale;
     if (farthest.end[k] < 0 || d > farthest.end_distance[k]) {
       farthest.end[k] = v;
@@ -410,8 +451,9 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
   }
   const double source_scale = std::sqrt(surface_area(source.mesh));
   const double target_scale = std::sqrt(surface_area(target.mesh));
-  const FarthestInCells on_source = farthest_in_cells(source, matched_source, source_scale);
-  const FarthestInCells on_target = farthest_in_cells(target, matched_target, target_scale);
+  const std::vector<int> limb = limb_groups(source, target);
+  const FarthestInCells on_source = farthest_in_cells(source, matched_source, source_scale, limb);
+  const FarthestInCells on_target = farthest_in_cells(target, matched_target, target_scale, limb);
   const TipMismatch mismatch(source.mesh, target.mesh, map);
   // Elsewhere than where the first map squeezes, it has put the protrusion where it belongs and
   // its through-map matches (or none) stand.
@@ -429,6 +471,7 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
     });
   };
   for (std::size_t k = 0; k < source.anchors.size(); ++k) {
+    if (limb[k] != static_cast<int>(k)) continue;  // searched with its group's first anchor
     if (near_matched(source, matched_source, k, std::max(on_source.tip_distance[k], on_source.end_distance[k]),
                      source_scale) ||
         near_matched(target, matched_target, k, std::max(on_target.tip_distance[k], on_target.end_distance[k]),
@@ -461,9 +504,10 @@ std::vector<ExtremityAnchor> outside_squeezed_cells(const TipsAndAnchors& source
                                                     std::vector<ExtremityAnchor> through_map) {
   const double source_scale = std::sqrt(surface_area(source.mesh));
   const double target_scale = std::sqrt(surface_area(target.mesh));
-  const FarthestInCells farthest = farthest_in_cells(source, {}, source_scale);
+  const std::vector<int> limb = limb_groups(source, target);
+  const FarthestInCells farthest = farthest_in_cells(source, {}, source_scale, limb);
   std::erase_if(through_map, [&](const ExtremityAnchor& tip) {
-    const int k = source.found.cells.cell[std::get<AnchorVertex>(tip.specs[0].location).index];
+    const int k = limb[source.found.cells.cell[std::get<AnchorVertex>(tip.specs[0].location).index]];
     const int cell_tip = farthest.tip[k];
     return cell_tip >= 0 && squeezed_towards(source, target, map, cell_tip, k, source_scale, target_scale);
   });

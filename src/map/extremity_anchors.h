@@ -111,10 +111,16 @@ struct TipsAndAnchors {
   double reach = 0.0;               ///< the tips' reach, as a fraction of sqrt(area)
 };
 
+/// For each anchor, the first anchor (lowest index) of its limb: anchors nearer each other than
+/// kOneLimbLandmarks (0.05) sqrt(area) on both meshes, transitively. Two landmarks at one wrist split
+/// the hand between their geodesic Voronoi cells, differently on the two meshes; the matches by cell
+/// search such cells as one.
+std::vector<int> limb_groups(const TipsAndAnchors& source, const TipsAndAnchors& target);
+
 /// `through_map` (match_extremities) without the pairs whose template tip lies in the geodesic
-/// Voronoi cell of a landmark whose farthest template tip the first map squeezes towards the
-/// landmark (as match_extremities_by_cell judges it). Such a map has drawn the whole hand into the
-/// wrist, and which target fingertip a template fingertip's image lies nearest there is chance
+/// Voronoi cells of a limb (limb_groups) whose farthest template tip the first map squeezes towards
+/// the limb's first landmark (as match_extremities_by_cell judges it). Such a map has drawn the whole hand
+/// into the wrist, and which target fingertip a template fingertip's image lies nearest there is chance
 /// (SHREC'19 15 with the 29 anthropometric landmarks: the left middle fingertip's image 0.35 times
 /// as far from the left wrist as the fingertip is on the template, and the left thumb paired with
 /// the target's index finger through it).
@@ -125,7 +131,8 @@ std::vector<ExtremityAnchor> outside_squeezed_cells(const TipsAndAnchors& source
                                                     std::vector<ExtremityAnchor> through_map);
 
 /// Tips left out by `matched`, matched through the landmark whose geodesic Voronoi cell holds
-/// them. For each anchor whose cell holds no matched tip on either mesh: the unmatched tip
+/// them (the cells of a limb's landmarks, limb_groups, taken as the cell of its first). For each
+/// anchor whose cell holds no matched tip on either mesh: the unmatched tip
 /// farthest from the anchor on each mesh; where only one mesh has a tip there and it lies over
 /// 3 reaches from the anchor, the other mesh's farthest end in the cell (a fist ends a limb
 /// without a tip's spike). Matched when the two distances from

@@ -34,6 +34,22 @@ TEST(ProtrusionTips, AreTheEndsOfProtrusionsWithoutAnchors) {
   EXPECT_EQ(extremities(mesh, tip_distances(mesh, 5, {5, 4}), 0.5).tips, (std::vector<int>{0}));
 }
 
+// Anchors nearer each other than 0.05 sqrt(area) on both meshes hold one limb, transitively; an
+// anchor near another on one mesh only stays apart.
+TEST(LimbGroups, JoinLandmarksNearOnBothMeshesTransitively) {
+  const Mesh mesh = test::subdivided_octahedron(24);  // sqrt(area) 2.63: 0.05 of it is 0.13
+  const int a = 5;                                    // the -z corner
+  const int b = test::vertex_at(mesh, {1.0 / 12, 0.0, -11.0 / 12}).idx();  // 0.118 from a
+  const int c = test::vertex_at(mesh, {1.0 / 6, 0.0, -5.0 / 6}).idx();     // 0.118 from b, 0.236 from a
+  const Extremities none;
+  const std::vector<int> anchors = {a, b, c, 4};
+  const TipsAndAnchors side{mesh, none, anchors, 0.025};
+  EXPECT_EQ(limb_groups(side, side), (std::vector<int>{0, 0, 0, 3}));
+  const std::vector<int> b_apart = {a, 0, c, 4};  // b's landmark on the +x corner of the other mesh
+  const TipsAndAnchors other{mesh, none, b_apart, 0.025};
+  EXPECT_EQ(limb_groups(side, other), (std::vector<int>{0, 1, 2, 3}));
+}
+
 // Through the identity map each tip is matched with itself, at no mismatch, and helper names
 // avoid the names already taken.
 TEST(MatchExtremities, TheIdentityMatchesEachTipWithItself) {

@@ -928,8 +928,10 @@ TEST(ShrecHuman, APathRoundTheOtherSideOfTheAnkleIsTracedAgain) {
 // tips matched through it paired the template's left thumb with the target's index finger and the
 // right little finger with the index (the left hand's template vertices 1.35 cm from their truth
 // on average, the right's 7.8 cm, its fingers squeezed into spikes; looked at). With no pair taken
-// through a cell the map squeezes, the cells match the middle fingertips and the next round the
-// rest (measured: 0.78 and 3.1 cm, E_L2 1.073 -> 1.038; the left hand's five fingers on their own).
+// through a cell the map squeezes, and the right wrist's and ulnar styloid's cells, which split
+// the right hand differently on the two meshes, searched as one limb, the cells match the middle
+// fingertips and the next round the rest through the map they open (measured: 0.78 and 0.90 cm,
+// every tip within 2 cm of its truth, E_L2 1.073 -> 1.033; looked at: every finger on its own).
 TEST(ShrecHuman, NoFingertipIsPairedThroughAMapThatSqueezesTheHand) {
   const std::filesystem::path data = test::shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "../shared/data is not here";
@@ -938,25 +940,12 @@ TEST(ShrecHuman, NoFingertipIsPairedThroughAMapThatSqueezesTheHand) {
   const PairMapping map = map_pair(source.mesh, source_anchors, target.mesh, target_anchors, {});
   constexpr double kLeft = 1.0;
   constexpr double kRight = -1.0;
-  EXPECT_LT(hand_error(shrec, map, kLeft), 0.01) << "the left hand's mean distance to the truth, m";
-  EXPECT_LT(hand_error(shrec, map, kRight), 0.05) << "the right hand's mean distance to the truth, m";
-  // The second round paired the right little fingertip with the index through the first round's map;
-  // the map made again without it wins, and reports it.
-  ASSERT_EQ(map.doubtful_tips.size(), 1u);
-  EXPECT_GT(tip_off_truth(shrec, map.doubtful_tips[0]), 0.05);
-  // Every tip of the left hand (template x > 0.72) lies on its own finger. The right hand's are
-  // still one finger over, its cell's farthest tip being the index on the target (looked at: the
-  // ring finger a spike, the thumb not drawn out).
-  int left_tips = 0;
-  for (const ExtremityAnchor& tip : map.extremity_anchors) {
-    if (!(position(source.mesh, VertexHandle(std::get<AnchorVertex>(tip.specs[0].location).index)).x() >
-          0.72))
-      continue;
-    ++left_tips;
+  EXPECT_LT(hand_error(shrec, map, kLeft), 0.012) << "the left hand's mean distance to the truth, m";
+  EXPECT_LT(hand_error(shrec, map, kRight), 0.012) << "the right hand's mean distance to the truth, m";
+  EXPECT_GE(map.extremity_anchors.size(), 8u);  // measured 9: every fingertip but the right little one
+  for (const ExtremityAnchor& tip : map.extremity_anchors)
     EXPECT_LT(tip_off_truth(shrec, tip), 0.02) << tip.specs[0].name;
-  }
-  EXPECT_EQ(left_tips, 5);
-  EXPECT_LT(map.distortion.all.e_l2, 1.05);
+  EXPECT_LT(map.distortion.all.e_l2, 1.04);
   EXPECT_EQ(map.quality.strictly_folded_faces, 0);
   EXPECT_TRUE(map.quality.flipped_faces.empty());
 }
