@@ -272,13 +272,79 @@ double descriptor_mismatch(const std::vector<double>& a, const std::vector<doubl
   return difference / sum;
 }
 
+// The radius, a fraction of sqrt(area), over which an anchor's surface normal is averaged, so one
+// scan's facet does not turn it.
+constexpr double kAnchorNormalRadius = 0.01;
+
+// Area-weighted mean normal of the faces round the vertices within `radius` of `vertex`.
+Eigen::Vector3d normal_near(const Mesh& mesh, int vertex, double radius) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  std::vector<FaceHandle> counted;
+  for (const auto& [v, d] : ball(mesh, vertex, radius)) {
+    for (FaceHandle f : mesh.vf_range(mesh.vertex_handle(v))) counted.push_back(f);
+  }
+  std::sort(counted.begin(), counted.end());
+  counted.erase(std::unique(counted.begin(), counted.end()), counted.end());
+  for (FaceHandle f : counted) {
+    auto corner = mesh.cfv_begin(f);
+    const Eigen::Vector3d a = position(mesh, *corner++);
+    const Eigen::Vector3d b = position(mesh, *corner++);
+    const Eigen::Vector3d c = position(mesh, *corner);
+    sum += (b - a).cross(c - a);
+  }
+  return sum.normalized();
+}
+
 // One mesh's side of match_extremities_by_distances.
 struct DistanceSide {
   const Mesh& mesh;
   double scale = 1.0;           // sqrt(area)
   std::vector<int> references;  // the anchors' vertices, then the matched tips'
   std::vector<int> tips;        // the tips not matched yet
+  std::vector<Eigen::Vector3d> anchor_normals;  // of each anchor (normal_near), in references' order
+
+  // The sine of `tip`'s angle off the plane through anchor reference `a`, its normal and
+  // reference `b`: det[b - a, tip - a, n_a] / (|b - a| |tip - a|); which side of the line from a
+  // to b the tip lies on, seen from outside the surface at a.
+  double side_of(std::size_t a, std::size_t b, int tip) const {
+    const Eigen::Vector3d at = position(mesh, mesh.vertex_handle(references[a]));
+    const Eigen::Vector3d along = position(mesh, mesh.vertex_handle(references[b])) - at;
+    const Eigen::Vector3d to_tip = position(mesh, mesh.vertex_handle(tip)) - at;
+    const double lengths = along.norm() * to_tip.norm();
+    return lengths > 0.0 ? along.cross(to_tip).dot(anchor_normals[a]) / lengths : 0.0;
+  }
 };
+
+// A tip this far (a sine) to one side of a plane through an anchor (DistanceSide::side_of) lies
+// clearly on that side. The evaluation's hands, seen from the wrist towards the middle fingertip:
+// the template's index fingertip at -0.2, ring at +0.16; the targets' at -0.24 to -0.08 and +0.05
+// to +0.2, but for fingers fused into a mitten (within 0.05 of 0).
+constexpr double kClearSide = 0.1;
+
+// Whether template tip s and target tip t, their descriptors resting on two references near both
+// (descriptor_mismatch), one an anchor, lie clearly on opposite sides of the plane through them
+// and the anchor's normal: each other's mirror image. Two references fix a tip by its distances
+// only up to that mirror (an index and a ring fingertip lie as far from the wrist and the middle
+// fingertip), so distances alone paired them (SHREC'19 20 [29]). Three or more fix it; there the
+// sides are not read (a knuckle's normal turns with the finger).
+bool mirrored(const DistanceSide& source, int s, const std::vector<double>& s_distances,
+              const DistanceSide& target, int t, const std::vector<double>& t_distances,
+              std::size_t first_matched_tip) {
+  std::vector<std::size_t> near;
+  for (std::size_t r = 0; r < s_distances.size(); ++r)
+    if (std::min(s_distances[r], t_distances[r]) <= kDescriptorRadius) near.push_back(r);
+  if (near.size() != 2) return false;
+  for (int k = 0; k < 2; ++k) {
+    const std::size_t a = near[k];
+    const std::size_t b = near[1 - k];
+    if (a >= first_matched_tip) continue;
+    const double on_source = source.side_of(a, b, s);
+    const double on_target = target.side_of(a, b, t);
+    if (on_source * on_target < 0.0 && std::min(std::abs(on_source), std::abs(on_target)) > kClearSide)
+      return true;
+  }
+  return false;
+}
 
 // One round of match_extremities_by_distances: the (template, target) tip pairs whose mismatch is
 // below kMaxDescriptorMismatch and under kDescriptorMargin times every other choice of either tip,
@@ -293,8 +359,13 @@ std::vector<std::pair<int, int>> clear_distance_matches(const DistanceSide& sour
   std::vector<double> cost(n_source * n_target);
   for (std::size_t s = 0; s < n_source; ++s) {
     const std::vector<double> distances = reference_distances(source.mesh, source.tips[s], source.references, source.scale);
-    for (std::size_t t = 0; t < n_target; ++t)
-      cost[s * n_target + t] = descriptor_mismatch(distances, target_distances[t], first_matched_tip);
+    for (std::size_t t = 0; t < n_target; ++t) {
+      const bool mirror = mirrored(source, source.tips[s], distances, target, target.tips[t],
+                                   target_distances[t], first_matched_tip);
+      cost[s * n_target + t] = mirror
+                                   ? std::numeric_limits<double>::infinity()
+                                   : descriptor_mismatch(distances, target_distances[t], first_matched_tip);
+    }
   }
   const auto clear_best = [](std::size_t n, std::size_t best, const auto& cost_of) {
     for (std::size_t k = 0; k < n; ++k) {
@@ -532,8 +603,12 @@ std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors
                                                             const std::vector<std::string>& taken) {
   std::vector<ExtremityAnchor> by_distances;
   if (matched.empty()) return by_distances;
-  DistanceSide on_source{source.mesh, std::sqrt(surface_area(source.mesh)), source.anchors, {}};
-  DistanceSide on_target{target.mesh, std::sqrt(surface_area(target.mesh)), target.anchors, {}};
+  DistanceSide on_source{source.mesh, std::sqrt(surface_area(source.mesh)), source.anchors, {}, {}};
+  DistanceSide on_target{target.mesh, std::sqrt(surface_area(target.mesh)), target.anchors, {}, {}};
+  for (DistanceSide* side : {&on_source, &on_target}) {
+    for (int anchor : side->references)
+      side->anchor_normals.push_back(normal_near(side->mesh, anchor, kAnchorNormalRadius * side->scale));
+  }
   std::vector<std::string> names = taken;
   for (const ExtremityAnchor& tip : matched) {
     on_source.references.push_back(std::get<AnchorVertex>(tip.specs[0].location).index);

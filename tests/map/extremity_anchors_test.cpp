@@ -272,19 +272,30 @@ TEST_F(HandOfTips, AreMatchedByTheirDistancesToTheMatchedTipsAndLandmarks) {
                   .empty());
 }
 
-// Tips a and b mirror each other across the plane through the thumb and the wrist landmark: their
-// distances to both are the same, and neither is matched; a second landmark off that plane tells
-// them apart.
-TEST_F(HandOfTips, MirrorTipsAreLeftUnmatchedUntilALandmarkTellsThemApart) {
+// Tips a and b mirror each other across the plane through the thumb, the wrist landmark and the
+// surface's normal there: their distances to both are the same, so distances alone cannot tell
+// them apart (an index and a ring fingertip about the middle one), but they lie on opposite sides
+// of that plane, a at sine -0.5 and b at +0.5 (worked by hand), on both meshes. Each is matched
+// with itself, and never with the other's mirror image; a second landmark off the plane tells them
+// apart by distances too.
+TEST_F(HandOfTips, MirrorTipsAreToldApartByTheirSideOfTheWristAndThumb) {
   const int a = at(0.75, 0.0, 0.25), b = at(0.75, 0.25, 0.0);
-  Extremities tips;
-  tips.tips = {a, b};
+  Extremities both, only_a, only_b;
+  both.tips = {a, b};
+  only_a.tips = {a};
+  only_b.tips = {b};
   const std::vector<int> on_axis = {at(0.5, 0.25, 0.25)};
-  EXPECT_TRUE(match_extremities_by_distances({mesh, tips, on_axis, 0.1}, {target, tips, on_axis, 0.1},
+  EXPECT_EQ(pairs(match_extremities_by_distances({mesh, both, on_axis, 0.1}, {target, both, on_axis, 0.1},
+                                                 {images, faces}, {thumb}, {})),
+            (std::vector<std::pair<int, int>>{{a, a}, {b, b}}));
+  EXPECT_TRUE(match_extremities_by_distances({mesh, only_a, on_axis, 0.1}, {target, only_b, on_axis, 0.1},
                                              {images, faces}, {thumb}, {})
                   .empty());
+  EXPECT_EQ(pairs(match_extremities_by_distances({mesh, only_a, on_axis, 0.1}, {target, only_a, on_axis, 0.1},
+                                                 {images, faces}, {thumb}, {})),
+            (std::vector<std::pair<int, int>>{{a, a}}));
   const std::vector<int> off_axis = {on_axis[0], at(0.5, 0.5, 0.0)};
-  EXPECT_EQ(pairs(match_extremities_by_distances({mesh, tips, off_axis, 0.1}, {target, tips, off_axis, 0.1},
+  EXPECT_EQ(pairs(match_extremities_by_distances({mesh, both, off_axis, 0.1}, {target, both, off_axis, 0.1},
                                                  {images, faces}, {thumb}, {})),
             (std::vector<std::pair<int, int>>{{a, a}, {b, b}}));
 }
