@@ -75,12 +75,8 @@ double local_stretch(const PairMapping& map, const Mesh& source, int tip) {
   double stretch_area = 0.0;
   double area = 0.0;
   for (FaceHandle f : source.faces()) {
-    auto corner = source.cfv_begin(f);
-    const Eigen::Vector3d a = position(source, *corner++);
-    const Eigen::Vector3d b = position(source, *corner++);
-    const Eigen::Vector3d c = position(source, *corner);
-    if (((a + b + c) / 3.0 - center).norm() > radius) continue;
-    const double face_area = 0.5 * (b - a).cross(c - a).norm();
+    if ((to_eigen(source.calc_face_centroid(f)) - center).norm() > radius) continue;
+    const double face_area = source.calc_face_area(f);
     const double stretch = map.distortion.face_l2_stretch[f.idx()];
     stretch_area += stretch * stretch * face_area;
     area += face_area;
