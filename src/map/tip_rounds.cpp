@@ -555,7 +555,7 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
                              double margin, bool judged_locally) {
     std::optional<AnchoredMap> rival =
         map_with_extremity_anchors(in, current, std::move(rival_tips), seconds, &tipped->map);
-    if (!rival) return;
+    if (!rival) return false;
     const double rival_l2 = rival->map.distortion.all.e_l2;
     const double winner_l2 = tipped->map.distortion.all.e_l2;
     const auto less_stretched_locally = [&] {
@@ -564,9 +564,11 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
              local_stretch(rival->map, in.source, tip) <
                  (1.0 - kLocalRivalMargin) * local_stretch(tipped->map, in.source, tip);
     };
-    if (rival_l2 > (1.0 - margin) * winner_l2 && !(judged_locally && less_stretched_locally())) return;
+    if (rival_l2 > (1.0 - margin) * winner_l2 && !(judged_locally && less_stretched_locally())) return false;
+    rival->map.doubtful_tips = tipped->map.doubtful_tips;  // an earlier rival's too: made on top of it
     rival->map.doubtful_tips.push_back(left_out);
     tipped = std::move(rival);
+    return true;
   };
   // A tip matched by its landmark's cell is the farthest from the landmark on each mesh, and two
   // fingers can be nearly as long (ExtremityAnchor::rival_target): SHREC'19 18 [29 anthropometric]
@@ -574,16 +576,30 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   // through that map, the ring with the middle; the index finger and thumb were left squeezed on
   // the back of the target's hand. The winner is tried against a map with the cell's other tip, the
   // rest matched again, and the better kept (that pair: E_L2 1.047 -> 1.032 in this round, every
-  // finger on its finger after the next).
-  const auto new_tips = tipped->map.extremity_anchors.begin() +
-                        static_cast<std::ptrdiff_t>(current.map.extremity_anchors.size());
-  const auto ambiguous = std::find_if(new_tips, tipped->map.extremity_anchors.end(),
-                                      [](const ExtremityAnchor& tip) { return tip.rival_target >= 0; });
-  if (ambiguous != tipped->map.extremity_anchors.end()) {
+  // finger on its finger after the next). Every ambiguous cell is tried in turn, each rival on top
+  // of those that won before it: the rest matched again would put an earlier cell back on its
+  // farthest tip. SHREC'19 19 [29]: the right wrist's rival won, and the left's, tried on the
+  // right's farthest tip, lost (E_L2 1.045 against 1.043); tried on the right's rival it wins
+  // (1.033), the left thumb on the thumb instead of long faces across the palm.
+  std::vector<int> rivals_tried;            // the template tips whose cell's rival was tried
+  std::vector<ExtremityAnchor> rivals_won;  // the rival matches that replaced their cell's tip
+  for (;;) {
+    const auto new_tips = tipped->map.extremity_anchors.begin() +
+                          static_cast<std::ptrdiff_t>(current.map.extremity_anchors.size());
+    const auto ambiguous =
+        std::find_if(new_tips, tipped->map.extremity_anchors.end(), [&](const ExtremityAnchor& tip) {
+          return tip.rival_target >= 0 && std::find(rivals_tried.begin(), rivals_tried.end(),
+                                                    tip_vertices(tip)[0]) == rivals_tried.end();
+        });
+    if (ambiguous == tipped->map.extremity_anchors.end()) break;
+    rivals_tried.push_back(tip_vertices(*ambiguous)[0]);
     std::vector<ExtremityAnchor> with_rival = through_map;
-    with_rival.push_back(matched_with_rival(*ambiguous, in.source, in.target, first));
+    with_rival.insert(with_rival.end(), rivals_won.begin(), rivals_won.end());
+    const ExtremityAnchor rival = matched_with_rival(*ambiguous, in.source, in.target, first);
+    with_rival.push_back(rival);
     const ExtremityAnchor replaced = *ambiguous;  // `tipped`, which holds it, may be replaced
-    try_rival(with_the_rest(std::move(with_rival)), replaced, kRivalMargin, true);
+    if (try_rival(with_the_rest(std::move(with_rival)), replaced, kRivalMargin, true))
+      rivals_won.push_back(rival);
   }
   // Where the first map squeezed a hand, its nearest tip through the map can be another finger's
   // (FAUST 000/010 [29 anthropometric]: a fingertip paired with one 16 cm from its own; the map
@@ -601,8 +617,13 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
     return finish(round_map(std::move(tipped)));
   std::vector<ExtremityAnchor> others(through_map.begin(), worst);
   others.insert(others.end(), std::next(worst), through_map.end());
+  others.insert(others.end(), rivals_won.begin(), rivals_won.end());  // as the winner was matched
   const std::vector<ExtremityAnchor> without_doubtful = with_the_rest(std::move(others));
-  if (same_tips(without_doubtful, tips))
+  const std::vector<ExtremityAnchor> winners_tips(
+      tipped->map.extremity_anchors.begin() +
+          static_cast<std::ptrdiff_t>(current.map.extremity_anchors.size()),
+      tipped->map.extremity_anchors.end());
+  if (same_tips(without_doubtful, winners_tips))
     return finish(round_map(std::move(tipped)));  // the doubtful one matched again otherwise
   try_rival(without_doubtful, *worst, 0.0, false);
   return finish(round_map(std::move(tipped)));
