@@ -229,6 +229,11 @@ bool squeezed_towards(const TipsAndAnchors& source, const TipsAndAnchors& target
   return image_from_anchor < kSqueezed * from_anchor;
 }
 
+// How near a pair's tip its neighbour must lie, on each mesh, as a fraction of sqrt(area), for the
+// pair to be tried one over (one_over): a hand's next finger. The template's neighbouring fingertips
+// lie 0.024-0.036 apart, its index fingertip 0.073 from the thumb's.
+constexpr double kOneOverReach = 0.05;
+
 // Tips matched by their distances to the references near them (match_extremities_by_distances):
 // the references lie within kDescriptorRadius sqrt(area) of one of the two tips (a hand's span);
 // a pair is matched below kMaxDescriptorMismatch, and under kDescriptorMargin times the mismatch
@@ -595,6 +600,65 @@ ExtremityAnchor matched_with_rival(const ExtremityAnchor& tip, const Mesh& sourc
   rival.miss = mismatch.misses(s, tip.rival_target, mismatch.preimage(tip.rival_target));
   rival.rival_target = -1;
   return rival;
+}
+
+std::optional<std::array<ExtremityAnchor, 2>> one_over(const TipsAndAnchors& source,
+                                                       const TipsAndAnchors& target, const FirstMap& map,
+                                                       const ExtremityAnchor& pair,
+                                                       const std::vector<ExtremityAnchor>& matched,
+                                                       const std::vector<std::string>& taken) {
+  const std::array<const TipsAndAnchors*, 2> sides = {&source, &target};
+  const std::array<int, 2> tip = {std::get<AnchorVertex>(pair.specs[0].location).index,
+                                  std::get<AnchorVertex>(pair.specs[1].location).index};
+  const auto at = [&](int side, int v) {
+    return position(sides[side]->mesh, sides[side]->mesh.vertex_handle(v));
+  };
+  const auto apart = [&](int side, int a, int b) { return (at(side, a) - at(side, b)).norm(); };
+  // On each mesh the found tip nearest the pair's, when it lies near and is unmatched.
+  std::array<int, 2> beside{-1, -1};
+  for (int side = 0; side < 2; ++side) {
+    for (int v : sides[side]->found.tips) {
+      if (v != tip[side] &&
+          (beside[side] < 0 || apart(side, v, tip[side]) < apart(side, beside[side], tip[side])))
+        beside[side] = v;
+    }
+    if (beside[side] < 0 ||
+        apart(side, beside[side], tip[side]) > kOneOverReach * std::sqrt(surface_area(sides[side]->mesh)))
+      return std::nullopt;
+    const bool is_matched = std::any_of(matched.begin(), matched.end(), [&](const ExtremityAnchor& other) {
+      return std::get<AnchorVertex>(other.specs[side].location).index == beside[side];
+    });
+    if (is_matched) return std::nullopt;
+  }
+  // The reference nearest the template tip, an anchor or a matched tip, and its partner.
+  std::vector<std::array<int, 2>> references;
+  for (std::size_t k = 0; k < source.anchors.size(); ++k)
+    references.push_back({source.anchors[k], target.anchors[k]});
+  for (const ExtremityAnchor& other : matched)
+    references.push_back({std::get<AnchorVertex>(other.specs[0].location).index,
+                          std::get<AnchorVertex>(other.specs[1].location).index});
+  std::erase_if(references, [&](const std::array<int, 2>& reference) { return reference[0] == tip[0]; });
+  if (references.empty()) return std::nullopt;
+  const std::array<int, 2> reference = *std::min_element(
+      references.begin(), references.end(),
+      [&](const auto& a, const auto& b) { return apart(0, a[0], tip[0]) < apart(0, b[0], tip[0]); });
+  const auto beyond = [&](int side) {
+    return apart(side, beside[side], reference[side]) > apart(side, tip[side], reference[side]);
+  };
+  if (beyond(0) == beyond(1)) return std::nullopt;
+  const TipMismatch mismatch(source.mesh, target.mesh, map);
+  std::array<ExtremityAnchor, 2> over{pair, pair};
+  over[0].specs[1].location = AnchorVertex{beside[1]};
+  over[0].miss = mismatch.misses(tip[0], beside[1], mismatch.preimage(beside[1]));
+  std::vector<std::string> names = taken;
+  for (const ExtremityAnchor& other : matched) names.push_back(other.specs[0].name);
+  over[1] = tip_anchor(beside[0], tip[1], mismatch.misses(beside[0], tip[1], mismatch.preimage(tip[1])),
+                       matched.size() + 1, names);
+  for (ExtremityAnchor& shifted : over) {
+    shifted.matched_by = TipMatching::one_over;
+    shifted.rival_target = -1;
+  }
+  return over;
 }
 
 std::vector<ExtremityAnchor> match_extremities_by_distances(const TipsAndAnchors& source, const TipsAndAnchors& target,

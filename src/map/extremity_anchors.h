@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -65,6 +66,7 @@ enum class TipMatching {
   by_cell,       ///< match_extremities_by_cell: the farthest tips in one landmark's cell
   by_distances,  ///< match_extremities_by_distances: distances to the landmarks and matched tips near
   in_row,        ///< match_short_tip_rows: aligned in a row beside a matched tip (small toes)
+  one_over,      ///< one_over: a pair through the first map moved one finger over
 };
 
 /// A tip matched on both meshes.
@@ -147,6 +149,24 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
 /// instead: the same template tip and name, its misses through `map` measured again, no rival.
 ExtremityAnchor matched_with_rival(const ExtremityAnchor& tip, const Mesh& source, const Mesh& target,
                                    const FirstMap& map);
+
+/// A pair matched through the first map (`pair`) that may be one finger over, and the two pairs one
+/// over; none when it looks in place. It may be when the tip nearest its template tip and the tip
+/// nearest its target tip (among the found tips, within kOneOverReach sqrt(area) of each) are
+/// matched on neither mesh (by `matched`) and lie on opposite sides of the pair: one farther than
+/// the pair's tip from the reference nearest the template tip (an anchor or a tip of `matched`,
+/// with its partner on the target), the other nearer. SHREC'19 21 [73 CAESAR]: the first map
+/// squeezed the template's ring and little fingers onto the target's little finger, and paired the
+/// ring fingertip with the little one; the template's little fingertip lies beyond the ring's from
+/// the middle fingertip's landmark, the target's ring fingertip short of the little one. The pairs
+/// one over: the template tip with the target tip's neighbour (the pair's name; TipMatching::one_over)
+/// and the template tip's neighbour with the target tip (named as in match_extremities_by_cell),
+/// their misses through `map`.
+std::optional<std::array<ExtremityAnchor, 2>> one_over(const TipsAndAnchors& source,
+                                                       const TipsAndAnchors& target, const FirstMap& map,
+                                                       const ExtremityAnchor& pair,
+                                                       const std::vector<ExtremityAnchor>& matched,
+                                                       const std::vector<std::string>& taken);
 
 /// Tips still unmatched after `matched` on a limb where a tip is matched (a hand whose thumb is
 /// matched and whose four fingers the first map squeezed into the palm), matched by their edge-path

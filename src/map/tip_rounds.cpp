@@ -581,25 +581,41 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   // farthest tip. SHREC'19 19 [29]: the right wrist's rival won, and the left's, tried on the
   // right's farthest tip, lost (E_L2 1.045 against 1.043); tried on the right's rival it wins
   // (1.033), the left thumb on the thumb instead of long faces across the palm.
-  std::vector<int> rivals_tried;            // the template tips whose cell's rival was tried
-  std::vector<ExtremityAnchor> rivals_won;  // the rival matches that replaced their cell's tip
+  std::vector<int> rivals_tried;  // the template tips whose cell's rival was tried
+  // The pairs through the map with the choices that replaced them in the winner: the rival matches
+  // and the pairs one over.
+  std::vector<ExtremityAnchor> chosen = through_map;
+  const auto winners_tips = [&] {
+    return std::vector<ExtremityAnchor>(tipped->map.extremity_anchors.begin() +
+                                            static_cast<std::ptrdiff_t>(current.map.extremity_anchors.size()),
+                                        tipped->map.extremity_anchors.end());
+  };
   for (;;) {
-    const auto new_tips = tipped->map.extremity_anchors.begin() +
-                          static_cast<std::ptrdiff_t>(current.map.extremity_anchors.size());
-    const auto ambiguous =
-        std::find_if(new_tips, tipped->map.extremity_anchors.end(), [&](const ExtremityAnchor& tip) {
-          return tip.rival_target >= 0 && std::find(rivals_tried.begin(), rivals_tried.end(),
-                                                    tip_vertices(tip)[0]) == rivals_tried.end();
-        });
-    if (ambiguous == tipped->map.extremity_anchors.end()) break;
+    const std::vector<ExtremityAnchor> winners = winners_tips();
+    const auto ambiguous = std::find_if(winners.begin(), winners.end(), [&](const ExtremityAnchor& tip) {
+      return tip.rival_target >= 0 &&
+             std::find(rivals_tried.begin(), rivals_tried.end(), tip_vertices(tip)[0]) == rivals_tried.end();
+    });
+    if (ambiguous == winners.end()) break;
     rivals_tried.push_back(tip_vertices(*ambiguous)[0]);
-    std::vector<ExtremityAnchor> with_rival = through_map;
-    with_rival.insert(with_rival.end(), rivals_won.begin(), rivals_won.end());
-    const ExtremityAnchor rival = matched_with_rival(*ambiguous, in.source, in.target, first);
-    with_rival.push_back(rival);
-    const ExtremityAnchor replaced = *ambiguous;  // `tipped`, which holds it, may be replaced
-    if (try_rival(with_the_rest(std::move(with_rival)), replaced, kRivalMargin, true))
-      rivals_won.push_back(rival);
+    std::vector<ExtremityAnchor> with_rival = chosen;
+    with_rival.push_back(matched_with_rival(*ambiguous, in.source, in.target, first));
+    if (try_rival(with_the_rest(with_rival), *ambiguous, kRivalMargin, true)) chosen = std::move(with_rival);
+  }
+  // A pair through the map may be one finger over where the map squeezed two fingers onto one
+  // (one_over): then the map with the pairs one over is tried, judged as a cell's rival. SHREC'19
+  // 21 [73 CAESAR]: the template's right ring fingertip was paired with the target's little one, the
+  // little finger squeezed into a disc on the back of the hand and the target's ring finger under
+  // long faces (looked at).
+  for (const ExtremityAnchor& pair : through_map) {
+    const std::optional<std::array<ExtremityAnchor, 2>> over =
+        one_over(source_side, target_side, first, pair, winners_tips(), anchor_names(on_source));
+    if (!over || !holds_pair(chosen, pair)) continue;
+    std::vector<ExtremityAnchor> with_over;
+    for (const ExtremityAnchor& tip : chosen)
+      if (tip_vertices(tip) != tip_vertices(pair)) with_over.push_back(tip);
+    with_over.insert(with_over.end(), over->begin(), over->end());
+    if (try_rival(with_the_rest(with_over), pair, kRivalMargin, true)) chosen = std::move(with_over);
   }
   // Where the first map squeezed a hand, its nearest tip through the map can be another finger's
   // (FAUST 000/010 [29 anthropometric]: a fingertip paired with one 16 cm from its own; the map
@@ -610,20 +626,20 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   // the better kept (that pair: E_L2 1.03). One tip, not every doubtful one: on SHREC'19 1 [29]
   // the map without two (the wrong fingertip and another tip) folds 5 faces, without the wrong
   // one none.
-  const auto worst = std::max_element(
-      through_map.begin(), through_map.end(),
-      [](const ExtremityAnchor& a, const ExtremityAnchor& b) { return a.larger_miss() < b.larger_miss(); });
-  if (worst == through_map.end() || worst->carried_within(kDoubtfulMiss * in.settings.tip_reach))
+  // The pair through the map that missed most; the other choices are no pairs through it.
+  const auto miss_through_map = [](const ExtremityAnchor& tip) {
+    return tip.matched_by == TipMatching::through_map ? tip.larger_miss() : -1.0;
+  };
+  const auto worst =
+      std::max_element(chosen.begin(), chosen.end(), [&](const ExtremityAnchor& a, const ExtremityAnchor& b) {
+        return miss_through_map(a) < miss_through_map(b);
+      });
+  if (worst == chosen.end() || miss_through_map(*worst) <= kDoubtfulMiss * in.settings.tip_reach)
     return finish(round_map(std::move(tipped)));
-  std::vector<ExtremityAnchor> others(through_map.begin(), worst);
-  others.insert(others.end(), std::next(worst), through_map.end());
-  others.insert(others.end(), rivals_won.begin(), rivals_won.end());  // as the winner was matched
+  std::vector<ExtremityAnchor> others(chosen.begin(), worst);  // as the winner was matched
+  others.insert(others.end(), std::next(worst), chosen.end());
   const std::vector<ExtremityAnchor> without_doubtful = with_the_rest(std::move(others));
-  const std::vector<ExtremityAnchor> winners_tips(
-      tipped->map.extremity_anchors.begin() +
-          static_cast<std::ptrdiff_t>(current.map.extremity_anchors.size()),
-      tipped->map.extremity_anchors.end());
-  if (same_tips(without_doubtful, winners_tips))
+  if (same_tips(without_doubtful, winners_tips()))
     return finish(round_map(std::move(tipped)));  // the doubtful one matched again otherwise
   try_rival(without_doubtful, *worst, 0.0, false);
   return finish(round_map(std::move(tipped)));

@@ -300,6 +300,50 @@ TEST_F(HandOfTips, MirrorTipsAreToldApartByTheirSideOfTheWristAndThumb) {
             (std::vector<std::pair<int, int>>{{a, a}, {b, b}}));
 }
 
+// Three vertices in a row, r, p and q, 1/12 apart along an edge direction of the face (0.118 on the
+// template, 0.236 on the target, under 0.05 of sqrt(area), 0.13 and 0.26): r a landmark (the middle
+// fingertip), p and q found tips (the ring and little ones). A pair of the template's p with the
+// target's q, both neighbours unmatched, is one finger over: the template's neighbour q lies beyond
+// p from the landmark, the target's neighbour p short of q. The pairs one over are p with p (the
+// pair's name) and q with q (named anew). A pair of p with p, both q's unmatched beyond it, is in
+// place; so is a pair whose neighbour is matched, or lies farther than a next finger.
+TEST_F(HandOfTips, APairWhoseNeighboursLieOnOppositeSidesIsTriedOneOver) {
+  const int r = at(6.0 / 12, 3.0 / 12, 3.0 / 12), p = at(7.0 / 12, 2.0 / 12, 3.0 / 12),
+            q = at(8.0 / 12, 1.0 / 12, 3.0 / 12);
+  Extremities found;
+  found.tips = {p, q};
+  const std::vector<int> landmark = {r};
+  const TipsAndAnchors source{mesh, found, landmark, 0.1};
+  const TipsAndAnchors on_target{target, found, landmark, 0.1};
+  const auto tip_pair = [](int s, int t, const std::string& name) {
+    ExtremityAnchor pair;
+    pair.specs[0] = {name, AnchorVertex{s}, "", 0};
+    pair.specs[1] = {name, AnchorVertex{t}, "", 0};
+    return pair;
+  };
+  const ExtremityAnchor ring_on_little = tip_pair(p, q, "tip 1");
+  const std::optional<std::array<ExtremityAnchor, 2>> over =
+      one_over(source, on_target, {images, faces}, ring_on_little, {ring_on_little}, {"tip 2"});
+  ASSERT_TRUE(over.has_value());
+  EXPECT_EQ(pairs({(*over)[0], (*over)[1]}), (std::vector<std::pair<int, int>>{{p, p}, {q, q}}));
+  EXPECT_EQ((*over)[0].specs[0].name, "tip 1");
+  EXPECT_EQ((*over)[1].specs[0].name, "tip 2'");
+  EXPECT_EQ((*over)[1].specs[1].name, "tip 2'");
+  EXPECT_EQ((*over)[0].matched_by, TipMatching::one_over);
+  EXPECT_EQ((*over)[1].matched_by, TipMatching::one_over);
+
+  const ExtremityAnchor ring_on_ring = tip_pair(p, p, "tip 1");
+  EXPECT_FALSE(one_over(source, on_target, {images, faces}, ring_on_ring, {ring_on_ring}, {}).has_value());
+  const ExtremityAnchor little = tip_pair(q, p, "tip 2");  // the target's neighbour matched
+  EXPECT_FALSE(
+      one_over(source, on_target, {images, faces}, ring_on_little, {ring_on_little, little}, {}).has_value());
+  Extremities far;  // the template's next tip two steps beyond p: 0.236, over 0.13
+  far.tips = {p, at(9.0 / 12, 0.0, 3.0 / 12)};
+  EXPECT_FALSE(
+      one_over({mesh, far, landmark, 0.1}, on_target, {images, faces}, ring_on_little, {ring_on_little}, {})
+          .has_value());
+}
+
 // Two rows of positions, the second with a spurious item between its first two: paired by rank
 // every item after it would slide by one; aligned, it is left out and the rest pair exactly.
 TEST(AlignRows, LeavesOutASpuriousItemRatherThanSlidingTheRestByOne) {
