@@ -97,8 +97,10 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "--retry-doubtful-tips,!--no-retry-doubtful-tips", settings.retry_doubtful_tips,
       "When a map through tips wins and the tip the first map carried farthest from its partner missed by "
       "more than 1.5 times the tip reach, map once more without it (the rest matched again) and keep the "
-      "better map: where the first map squeezed a hand, a fingertip can be paired with another finger's "
-      "(default on; one more whole map on such pairs)");
+      "better map: where the first map squeezed a hand, a fingertip can be paired with another finger's. "
+      "Likewise with a landmark cell's next tip when it lies nearly as far as the tip matched, and with "
+      "the pairs one finger over when a pair's neighbouring tips are unmatched on opposite sides of it "
+      "(default on; one more whole map per such trial)");
   command
       .add_option(
           "--release-anchors", settings.max_released_anchors,

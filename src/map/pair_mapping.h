@@ -98,7 +98,9 @@ struct PairSettings {
   /// that tip (the others matched again without it) and keep the better map: a hand the first map
   /// squeezed can pair a fingertip with another finger's. Likewise when a tip of the winner was
   /// matched by its landmark's cell and the target's next tip there lies nearly as far from the
-  /// landmark (ExtremityAnchor::rival_target): map once more with that tip instead.
+  /// landmark (ExtremityAnchor::rival_target): map once more with that tip instead, each such cell
+  /// in turn; and when a pair through the map may be one finger over (one_over): map once more
+  /// with the pairs one over.
   bool retry_doubtful_tips = true;
   /// A protrusion tip ends a protrusion at least half this long and is the farthest point within
   /// this distance; fraction of sqrt(area) of each mesh (3.4 cm on an adult body).
@@ -249,8 +251,8 @@ struct PairMapping {
   int pulled_tips = 0;
   /// Tips a round matched and the kept map was made without (PairSettings::retry_doubtful_tips):
   /// one the map before carried farthest from its partner, by more than 1.5 tip_reach, the map
-  /// without it winning; or a match by cell whose rival won (ExtremityAnchor::rival_target). Not
-  /// among `anchors`.
+  /// without it winning; a match by cell whose rival won (ExtremityAnchor::rival_target); or a
+  /// pair through the map whose pairs one over won (one_over). Not among `anchors`.
   std::vector<ExtremityAnchor> doubtful_tips;
   /// The anchors the map no longer passes through, in the order they were released; empty
   /// unless PairSettings::max_released_anchors > 0 and the map with every anchor folds.
