@@ -432,10 +432,19 @@ double region_error(const ShrecPair& shrec, const PairMapping& map,
   return sum / count;
 }
 
-// The mean distance from the truth of a hand's template vertices, those beyond its wrist: x > 0.72
-// on the SMPL template for the left hand (side +1), x < -0.72 for the right (side -1).
+// Whether a point of the SMPL template lies on a hand, beyond its wrist: x > 0.72 for the left hand
+// (side +1), x < -0.72 for the right (side -1).
+bool on_hand(const Eigen::Vector3d& p, double side) { return side * p.x() > 0.72; }
+
+// The mean distance from the truth of a hand's template vertices (on_hand).
 double hand_error(const ShrecPair& shrec, const PairMapping& map, double side) {
-  return region_error(shrec, map, [side](const Eigen::Vector3d& p) { return side * p.x() > 0.72; });
+  return region_error(shrec, map, [side](const Eigen::Vector3d& p) { return on_hand(p, side); });
+}
+
+// Whether a tip's template vertex lies on a hand (on_hand).
+bool tip_on_hand(const ShrecPair& shrec, const ExtremityAnchor& tip, double side) {
+  const int on_template = std::get<AnchorVertex>(tip.specs[0].location).index;
+  return on_hand(position(shrec.source.mesh, VertexHandle(on_template)), side);
 }
 
 // How far a tip's target point lies from its template tip's true image, target units.
@@ -969,8 +978,7 @@ TEST(ShrecHuman, AFingertipIsNotPairedWithItsMirrorImageAboutTheMiddleFinger) {
   EXPECT_LT(hand_error(shrec, map, kLeft), 0.012) << "the left hand's mean distance to the truth, m";
   int left_hand_tips = 0;
   for (const ExtremityAnchor& tip : map.extremity_anchors) {
-    const int on_template = std::get<AnchorVertex>(tip.specs[0].location).index;
-    if (kLeft * position(source.mesh, VertexHandle(on_template)).x() <= 0.72) continue;
+    if (!tip_on_hand(shrec, tip, kLeft)) continue;
     EXPECT_LT(tip_off_truth(shrec, tip), 0.01) << tip.specs[0].name;
     ++left_hand_tips;
   }
@@ -1004,10 +1012,7 @@ TEST(ShrecHuman, EachWristsRivalTipLessStretchedAboutTheHandWins) {
   EXPECT_LT(hand_error(shrec, map, kLeft), 0.018) << "the left hand's mean distance to the truth, m";
   int right_cell_tips = 0;
   for (const ExtremityAnchor& tip : map.extremity_anchors) {
-    const int on_template = std::get<AnchorVertex>(tip.specs[0].location).index;
-    if (kRight * position(source.mesh, VertexHandle(on_template)).x() <= 0.72 ||
-        tip.matched_by != TipMatching::by_cell)
-      continue;
+    if (!tip_on_hand(shrec, tip, kRight) || tip.matched_by != TipMatching::by_cell) continue;
     EXPECT_LT(tip_off_truth(shrec, tip), 0.01) << tip.specs[0].name;
     ++right_cell_tips;
   }
@@ -1042,8 +1047,7 @@ TEST(ShrecHuman, APairOneFingerOverIsTriedWithItsNeighbours) {
   // any other (its own finger, not the next).
   std::vector<const ExtremityAnchor*> right_tips;
   for (const ExtremityAnchor& tip : map.extremity_anchors) {
-    const int on_template = std::get<AnchorVertex>(tip.specs[0].location).index;
-    if (kRight * position(source.mesh, VertexHandle(on_template)).x() > 0.72) right_tips.push_back(&tip);
+    if (tip_on_hand(shrec, tip, kRight)) right_tips.push_back(&tip);
   }
   int one_over_tips = 0;
   for (const ExtremityAnchor* tip : right_tips) {
