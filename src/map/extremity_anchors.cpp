@@ -102,6 +102,12 @@ class TipMismatch {
   double target_scale_;
 };
 
+// The names a new tip must avoid: `taken` and the names of `matched`.
+std::vector<std::string> names_taken(std::vector<std::string> taken, const std::vector<ExtremityAnchor>& matched) {
+  for (const ExtremityAnchor& tip : matched) taken.push_back(tip.specs[0].name);
+  return taken;
+}
+
 // A helper anchor on template vertex `s` and target vertex `t`, named "tip N" ("'" added while
 // the name is in `names`, which gains it).
 ExtremityAnchor tip_anchor(int s, int t, const std::array<double, 2>& miss, std::size_t n,
@@ -650,8 +656,7 @@ std::optional<std::array<ExtremityAnchor, 2>> one_over(const TipsAndAnchors& sou
   std::array<ExtremityAnchor, 2> over{pair, pair};
   over[0].specs[1].location = AnchorVertex{beside[1]};
   over[0].miss = mismatch.misses(tip[0], beside[1], mismatch.preimage(beside[1]));
-  std::vector<std::string> names = taken;
-  for (const ExtremityAnchor& other : matched) names.push_back(other.specs[0].name);
+  std::vector<std::string> names = names_taken(taken, matched);
   over[1] = tip_anchor(beside[0], tip[1], mismatch.misses(beside[0], tip[1], mismatch.preimage(tip[1])),
                        matched.size() + 1, names);
   for (ExtremityAnchor& shifted : over) {
@@ -757,8 +762,7 @@ std::vector<ExtremityAnchor> match_short_tip_rows(
   const auto source_rows = rows_beside(source, source_short, matched, 0);
   const auto target_rows = rows_beside(target, target_short, matched, 1);
   const TipMismatch mismatch(source.mesh, target.mesh, map);
-  std::vector<std::string> names = taken;
-  for (const ExtremityAnchor& tip : matched) names.push_back(tip.specs[0].name);
+  std::vector<std::string> names = names_taken(taken, matched);
   for (std::size_t k = 0; k < matched.size(); ++k) {
     const auto& source_row = source_rows[k];
     const auto& target_row = target_rows[k];
@@ -802,8 +806,7 @@ std::vector<FittedRow> fit_tip_rows(const TipsAndAnchors& source, const std::vec
   const double source_scale = std::sqrt(surface_area(source.mesh));
   const double target_scale = std::sqrt(surface_area(target.mesh));
   const TipMismatch mismatch(source.mesh, target.mesh, map);
-  std::vector<std::string> names = taken;
-  for (const ExtremityAnchor& tip : matched) names.push_back(tip.specs[0].name);
+  std::vector<std::string> names = names_taken(taken, matched);
   std::size_t added = 0;
   const auto at = [](const Mesh& mesh, int v) { return position(mesh, mesh.vertex_handle(v)); };
   for (std::size_t k = 0; k < matched.size(); ++k) {
