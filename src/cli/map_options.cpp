@@ -45,7 +45,8 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "--second-layout,!--no-second-layout", settings.retry_keeping_corners,
       "When the remesh still folds, build the base domain again with corners kept (as --keep-corners) "
       "at the anchors near the folds and their neighbours, then, if it folds too, at the anchors near "
-      "the folds alone, and keep the map with the fewest folds (default on)");
+      "the folds alone, and keep the map with the fewest folds (default on; made only when no map "
+      "through protrusion tips, --extremity-anchors, replaced the first)");
   command.add_flag(
       "--tip-anchors,!--no-tip-anchors", settings.tip_anchors,
       "When the remesh still folds next to anchors whose layout corners disagree between the meshes "
@@ -55,7 +56,8 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
       "--extremity-anchors,!--no-extremity-anchors", settings.extremity_anchors,
       "Find the tips of protrusions without a landmark (fingers, toes) on both meshes, match them "
       "through the first map, and map again through them as helper anchors; keep that map when it is "
-      "less stretched and folds no more (default on; one more whole map, counted against --max-maps)");
+      "less stretched and folds no more (default on; tried before the retries for folds, one more whole "
+      "map, counted against --max-maps)");
   command
       .add_option("--tip-rounds", settings.tip_rounds,
                   "Rounds of those tips: each later round matches tips through the last round's map "

@@ -11,10 +11,10 @@
 
 namespace xparam {
 
+using pair_maps::AnchoredLayouts;
 using pair_maps::AnchoredMap;
 using pair_maps::folds_less;
 using pair_maps::map_if_possible;
-using pair_maps::map_through_anchors;
 using pair_maps::PairInputs;
 using pair_maps::PairWork;
 using pair_maps::with_extremity_anchors;
@@ -68,6 +68,18 @@ std::optional<AnchoredMap> release_anchors(const PairInputs& in, const AnchoredM
   return best;
 }
 
+// Rounds of tips from `start` (PairSettings::tip_rounds), each matching tips through the map the
+// round before left: the last round's map that won, or nothing when the first round's did not.
+std::optional<AnchoredMap> tip_rounds(const PairInputs& in, const AnchoredMap& start, PairSeconds& seconds) {
+  std::optional<AnchoredMap> tipped;
+  for (int round = 0; round < in.settings.tip_rounds; ++round) {
+    std::optional<AnchoredMap> next = with_extremity_anchors(in, tipped ? *tipped : start, seconds);
+    if (!next) break;
+    tipped = std::move(next);
+  }
+  return tipped;
+}
+
 }  // namespace
 
 void PairSeconds::add_stages(const PairSeconds& other) {
@@ -96,41 +108,42 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
   const double copy_seconds = copy_watch.lap();
   const Mesh& mapped = copy ? copy->mesh() : target;
   const AnchorSet& mapped_anchors = copy ? copy->anchors() : target_anchors;
-  // One map is kept back for the helper anchors at protrusion tips, tried last on the map the
-  // retries below leave (which it must beat).
-  const int kept_back = settings.extremity_anchors && settings.max_maps > 1 ? 1 : 0;
   PairWork work;
-  work.maps_left = settings.max_maps - kept_back;
+  work.maps_left = settings.max_maps;
   const PairInputs in{source, mapped, curves, settings, on_stage, work};
-  AnchoredMap plain{
-      map_through_anchors(source, source_anchors, mapped, mapped_anchors, curves, settings, work, on_stage),
-      source_anchors, mapped_anchors};
-  PairSeconds seconds = plain.map.seconds;
-  std::optional<AnchoredMap> best;  // a map that folds less than `plain`, when one was found
-  if (settings.tip_anchors && !plain.map.quality.flipped_faces.empty())
-    best = with_helpers_behind_tips(in, plain, seconds);
-  const PairMapping& so_far = best ? best->map : plain.map;
-  if (settings.max_released_anchors > 0 && !so_far.quality.flipped_faces.empty()) {
-    // Releasing starts from the map through the given anchors alone (a helper is no landmark),
-    // then helpers are tried on what it leaves; the better of the two ways is kept (SHREC'19 17:
-    // helpers leave 1 fold, releasing the misplaced knuckle none).
+  // The map through the landmarks. The later layouts that may mend its folds wait for the rounds
+  // of tips, whose maps replace it on most pairs (AnchoredLayouts).
+  AnchoredMap plain{{}, source_anchors, mapped_anchors};
+  AnchoredLayouts landmark_layouts(source, source_anchors, mapped, mapped_anchors, curves, settings, work,
+                                   on_stage, plain.map);
+  PairSeconds seconds;              // of every map but `plain`'s, which are added last
+  std::optional<AnchoredMap> best;  // a map better than `plain`, when one was found
+  if (settings.extremity_anchors) best = tip_rounds(in, plain, seconds);
+  // No map through tips won: the later layouts of the map through the landmarks.
+  if (!best && landmark_layouts.may_retry()) landmark_layouts.retry(plain.map);
+  if (settings.tip_anchors) {
+    const AnchoredMap& so_far = best ? *best : plain;
+    if (!so_far.map.quality.flipped_faces.empty()) {
+      if (std::optional<AnchoredMap> helped = with_helpers_behind_tips(in, so_far, seconds))
+        best = std::move(helped);
+    }
+  }
+  if (settings.max_released_anchors > 0 && !(best ? *best : plain).map.quality.flipped_faces.empty()) {
+    // Releasing starts from the map through the landmarks alone (a helper or a tip is no
+    // landmark), its later layouts made, then helpers and tips are tried on what it leaves; the
+    // better of the two ways is kept (SHREC'19 17: helpers leave 1 fold, releasing the misplaced
+    // knuckle none).
+    if (landmark_layouts.may_retry()) landmark_layouts.retry(plain.map);
     std::optional<AnchoredMap> released = release_anchors(in, plain, seconds);
     if (released && settings.tip_anchors && !released->map.quality.flipped_faces.empty()) {
       if (std::optional<AnchoredMap> helped = with_helpers_behind_tips(in, *released, seconds))
         released = std::move(helped);
     }
-    if (released && folds_less(released->map, so_far)) best = std::move(released);
-  }
-  if (settings.extremity_anchors) {
-    work.maps_left += kept_back;
-    std::optional<AnchoredMap> tipped;
-    for (int round = 0; round < settings.tip_rounds; ++round) {
-      const AnchoredMap& last = tipped ? *tipped : best ? *best : plain;
-      std::optional<AnchoredMap> next = with_extremity_anchors(in, last, seconds);
-      if (!next) break;
-      tipped = std::move(next);
+    if (released && settings.extremity_anchors) {
+      if (std::optional<AnchoredMap> tipped = tip_rounds(in, *released, seconds))
+        released = std::move(tipped);
     }
-    if (tipped) best = std::move(tipped);
+    if (released && folds_less(released->map, (best ? *best : plain).map)) best = std::move(released);
   }
   // A map that squeezes part of the template to nothing without folding is one no retry above
   // sees: SHREC'19 22 [73 CAESAR], a mitten, where the middle fingertip's corners disagree and the
@@ -144,6 +157,7 @@ PairMapping map_pair(const Mesh& source, const AnchorSet& source_anchors, const 
         best = std::move(helped);
     }
   }
+  seconds.add_stages(plain.map.seconds);
   PairMapping result = best ? std::move(best->map) : std::move(plain.map);
   if (copy) {
     if (on_stage) on_stage("carry back");

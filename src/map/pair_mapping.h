@@ -46,6 +46,7 @@ struct PairSettings {
   /// if that map folds too, a third time at the anchors near the folds alone; keep the map with
   /// the fewest folds (never without untangling: then Gamma's own folds are asked for). A later
   /// layout the same as one mapped before is not mapped again (it still counts against max_maps).
+  /// For the map through the given anchors, made only when no map through tips replaced it.
   bool retry_keeping_corners = true;
   /// When the remesh still folds and the layout's corners disagree at some anchors
   /// (map/corner_report.h), map again with a helper anchor behind each of them
@@ -281,26 +282,28 @@ using StageCallback = std::function<void(const std::string& stage)>;
 /// (io/mesh_loader.h: provenance initialised, outward orientation); anchor sets are matched by
 /// name (the target's reordered to the template's), then placed on refined copies.
 ///
-/// With settings.tip_anchors, folds left and anchors whose corners disagree, the pair is mapped
-/// again through a helper anchor behind each such anchor (map/tip_anchors.h), at each of
-/// settings.tip_anchor_reaches in turn until a map has no fold; such a map replaces the best so
-/// far when it folds less, collapses no more template faces and has its area ratio within 2% of
-/// 1 (or no farther from 1 than before).
+/// First the map through the given anchors on its first layout. Then the rounds of helper anchors
+/// at protrusion tips matched through it (settings.extremity_anchors; see PairSettings), whose map
+/// replaces it on most pairs. Only when none does are the retries for its folds made: its later
+/// layouts (settings.retry_keeping_corners), then, with settings.tip_anchors, folds left and
+/// anchors whose corners disagree, the pair is mapped again through a helper anchor behind each
+/// such anchor (map/tip_anchors.h), at each of settings.tip_anchor_reaches in turn until a map has
+/// no fold; such a map replaces the best so far when it folds less, collapses no more template
+/// faces and has its area ratio within 2% of 1 (or no farther from 1 than before).
 ///
 /// With settings.max_released_anchors > 0 and folds still left, anchors are released one at a
-/// time, starting again from the map through the given anchors (a helper is no landmark): the
-/// anchors folds_by_anchor names are tried in its order (the most folds first), and the first
-/// whose release gives a map that folds less by the same rule is released; then again from the
-/// new map. It stops when the map has no fold, when no named anchor's release helps, or at the
-/// limit. A release whose layout cannot be built is passed over. Helpers behind tips are then
-/// tried on the released map, and the better of the two ways (helpers alone, or releases then
-/// helpers) is kept by the same rule.
+/// time, starting again from the map through the given anchors (a helper or a tip is no landmark;
+/// its later layouts made): the anchors folds_by_anchor names are tried in its order (the most
+/// folds first), and the first whose release gives a map that folds less by the same rule is
+/// released; then again from the new map. It stops when the map has no fold, when no named
+/// anchor's release helps, or at the limit. A release whose layout cannot be built is passed over.
+/// Helpers behind tips, then rounds of tips, are tried on the released map, and it replaces the
+/// best so far when it folds less by the same rule.
 ///
-/// Then the rounds of helper anchors at protrusion tips (settings.extremity_anchors; see
-/// PairSettings). Last, when no round of tips replaced the map and it squeezes template faces to
-/// nothing (L2 stretch over 10 times its scale) without a fold, the helpers behind tips are tried
-/// on it as for folds, a map replacing it when it folds no more by both counts, squeezes fewer
-/// faces so and is less stretched (E_L2), with the same rule for collapsed faces and area.
+/// Last, when no round of tips replaced the map and it squeezes template faces to nothing (L2
+/// stretch over 10 times its scale) without a fold, the helpers behind tips are tried on it as for
+/// folds, a map replacing it when it folds no more by both counts, squeezes fewer faces so and is
+/// less stretched (E_L2), with the same rule for collapsed faces and area.
 ///
 /// Every try above is a whole map; settings.max_maps bounds how many the pair makes in all.
 /// \throw InputError for anchors that do not match or cannot be placed

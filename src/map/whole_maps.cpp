@@ -201,14 +201,17 @@ void optimize_attempt(MapAttempt& attempt, const Mesh& source, const std::vector
   seconds.optimize_map += watch.lap();
 }
 
-// The anchors nearest the attempt's folded faces (map/fold_report.h), ascending.
-std::vector<int> anchors_at_folds(const MapAttempt& attempt, const std::vector<std::array<int, 3>>& faces,
+// The anchors nearest the folded faces of a filled map (map/fold_report.h), ascending.
+std::vector<int> anchors_at_folds(const PairMapping& map, const std::vector<std::array<int, 3>>& faces,
                                   const Mesh& target, const std::vector<std::string>& names) {
-  const LayoutSide& side = attempt.layout->layout.sides[0];
+  const LayoutSide& side = map.layout.layout.sides[0];
+  std::vector<Eigen::Vector3d> positions(map.remesh_vertices.rows());
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    positions[v] = map.remesh_vertices.row(static_cast<Eigen::Index>(v)).transpose();
   std::vector<int> anchors;
-  for (const AnchorFolds& folds : folds_by_anchor(
-           side.mesh, side.anchor_vertices, names, faces,
-           measure_remesh_quality(faces, attempt.positions(), attempt.locations(), target).flipped_faces))
+  for (const AnchorFolds& folds :
+       folds_by_anchor(side.mesh, side.anchor_vertices, names, faces,
+                       measure_remesh_quality(faces, positions, map.correspondence, target).flipped_faces))
     anchors.push_back(folds.anchor);
   std::sort(anchors.begin(), anchors.end());
   return anchors;
@@ -336,88 +339,111 @@ std::vector<PinnedVertex> pinned_vertices(const std::array<PlacedAnchors, 2>& an
   return pinned;
 }
 
-// map_pair on the anchors as given (no anchor released). When the first layout's map folds, later
-// layouts are tried only if `worth_retrying` (when given) accepts that map.
-PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
-                                const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
-                                const PairSettings& settings, PairWork& work, const StageCallback& on_stage,
-                                const std::function<bool(const PairMapping&)>& worth_retrying) {
+AnchoredLayouts::AnchoredLayouts(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
+                                 const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
+                                 const PairSettings& settings, PairWork& work, const StageCallback& on_stage,
+                                 PairMapping& map)
+    : source_(source),
+      target_(target),
+      curves_(curves),
+      settings_(settings),
+      work_(work),
+      on_stage_(on_stage),
+      source_refined_(source),
+      target_refined_(target),
+      faces_(triangles_of(source)) {
   const auto stage = [&](const char* name) {
-    if (on_stage) on_stage(name);
+    if (on_stage_) on_stage_(name);
   };
-  PairMapping result;
-  result.settings = settings;
+  map.settings = settings;
   Stopwatch total;
   Stopwatch watch;
 
   stage("anchors");
   const AnchorSet matched = match_anchors(source_anchors, target_anchors);
-  Mesh source_refined = source;
-  Mesh target_refined = target;
-  result.anchors[0] = place_anchors(source_refined, source, source_anchors, settings.placement,
-                                    work.input_surface(0, source, source_anchors));
-  result.anchors[1] = place_anchors(target_refined, target, matched, settings.placement,
-                                    work.input_surface(1, target, matched));
-  result.seconds.anchors = watch.lap();
+  map.anchors[0] = place_anchors(source_refined_, source, source_anchors, settings.placement,
+                                 work.input_surface(0, source, source_anchors));
+  map.anchors[1] = place_anchors(target_refined_, target, matched, settings.placement,
+                                 work.input_surface(1, target, matched));
+  map.seconds.anchors = watch.lap();
+  names_ = anchor_names(map.anchors[0]);
 
-  const std::array<const Mesh*, 2> refined = {&source_refined, &target_refined};
-  const std::vector<std::array<int, 3>> faces = triangles_of(source);
-  const std::vector<std::string> names = anchor_names(result.anchors[0]);
-  MapAttempt attempt = attempt_map(result.layout, source, faces, target, result.anchors, refined,
-                                   settings.optimization, settings, result.seconds, work, stage);
-  optimize_attempt(attempt, source, faces, target, result.anchors, settings, result.seconds, stage);
-  // The later attempts' layouts, when there are any (a CrossMap points into its layout).
+  MapAttempt attempt =
+      attempt_map(map.layout, source, faces_, target, map.anchors, {&source_refined_, &target_refined_},
+                  settings.optimization, settings, map.seconds, work, stage);
+  optimize_attempt(attempt, source, faces_, target, map.anchors, settings, map.seconds, stage);
+  composed_folds_ = attempt.composed.untangled.flipped_after;
+  folds_ = attempt.folds();
+  fill_map(map, attempt, source, target, curves, faces_, names_, stage);
+  map.seconds.total = total.lap();
+}
+
+bool AnchoredLayouts::may_retry() const {
+  const DomainOptimizationSettings& first = settings_.optimization;
+  return !retried_ && folds_ > 0 && settings_.retry_keeping_corners && settings_.untangle && first.stretch &&
+         !first.stretching.keep_corners;
+}
+
+// Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
+// and spread on the other; the map then folds near the anchor. When folds remain after
+// untangling (without it, Gamma's own folds are asked for), later layouts keep such corners
+// open (StretchSettings::keep_corners): first at the anchors nearest the folds and their
+// layout neighbours (SHREC'19 1 folds at the index knuckle, but the corner that collapsed is
+// at the fingertip, at the other end of a curve); then, if that map still folds, at the
+// anchors nearest the first map's folds alone (cat/horse: the neighbours' corners kept open
+// cost more than they gain). The map with the fewest folds is kept, the earliest on a tie.
+// A later layout whose composed map folds more than the kept one's is not optimized: the
+// optimization opens some folds of a composed map, but on both sets' maps (session 34) it
+// never made one that started with more folds fold less than the kept map (cat/horse: 22
+// composed folds against 12 came out 8 against 5).
+void AnchoredLayouts::retry(PairMapping& map) {
+  XP_ASSERT(may_retry());
+  retried_ = true;
+  const auto stage = [&](const char* name) {
+    if (on_stage_) on_stage_(name);
+  };
+  Stopwatch total;
+  const std::vector<int> folded = anchors_at_folds(map, faces_, target_, names_);
+  const std::vector<int> near_folds =
+      with_layout_neighbours(folded, map.layout.layout, static_cast<int>(names_.size()));
+  std::vector<std::vector<int>> corners_kept_at = {near_folds};
+  if (folded != near_folds) corners_kept_at.push_back(folded);  // else the same layout again
+  DomainOptimizationSettings keeping = settings_.optimization;
+  keeping.stretching.keep_corners = true;
+  // The later layouts (a CrossMap points into its layout); the winner's is copied into `map`.
   std::array<ConsistentLayoutResult, 2> later_layouts;
-  // Straightened curves from a fingertip anchor may hug each other down the finger on one mesh
-  // and spread on the other; the map then folds near the anchor. When folds remain after
-  // untangling (without it, Gamma's own folds are asked for), later layouts keep such corners
-  // open (StretchSettings::keep_corners): first at the anchors nearest the folds and their
-  // layout neighbours (SHREC'19 1 folds at the index knuckle, but the corner that collapsed is
-  // at the fingertip, at the other end of a curve); then, if that map still folds, at the
-  // anchors nearest the first map's folds alone (cat/horse: the neighbours' corners kept open
-  // cost more than they gain). The map with the fewest folds is kept, the earliest on a tie.
-  // A later layout whose composed map folds more than the kept one's is not optimized: the
-  // optimization opens some folds of a composed map, but on both sets' maps (session 34) it
-  // never made one that started with more folds fold less than the kept map (cat/horse: 22
-  // composed folds against 12 came out 8 against 5).
-  const DomainOptimizationSettings& first = settings.optimization;
-  bool retry = attempt.folds() > 0 && settings.retry_keeping_corners && settings.untangle && first.stretch &&
-               !first.stretching.keep_corners;
-  bool filled = false;
-  if (retry && worth_retrying) {
-    fill_map(result, attempt, source, target, curves, faces, names, stage);
-    filled = true;
-    retry = worth_retrying(result);
-  }
-  if (retry) {
-    const std::vector<int> folded = anchors_at_folds(attempt, faces, target, names);
-    const std::vector<int> near_folds =
-        with_layout_neighbours(folded, attempt.layout->layout, static_cast<int>(names.size()));
-    std::vector<std::vector<int>> corners_kept_at = {near_folds};
-    if (folded != near_folds) corners_kept_at.push_back(folded);  // else the same layout again
-    DomainOptimizationSettings keeping = first;
-    keeping.stretching.keep_corners = true;
-    std::vector<const Layout*> mapped = {&result.layout.layout};
-    for (std::size_t k = 0; k < corners_kept_at.size() && attempt.folds() > 0 && work.allows_another_map();
-         ++k) {
-      keeping.stretching.keep_corners_at = corners_kept_at[k];
-      MapAttempt later = attempt_map(later_layouts[k], source, faces, target, result.anchors, refined,
-                                     keeping, settings, result.seconds, work, stage, mapped);
-      ++result.layouts_built;
-      if (later.repeats) continue;
-      mapped.push_back(&later_layouts[k].layout);
-      if (later.composed.untangled.flipped_after > attempt.composed.untangled.flipped_after) continue;
-      optimize_attempt(later, source, faces, target, result.anchors, settings, result.seconds, stage);
-      if (later.folds() < attempt.folds()) {
-        attempt = std::move(later);
-        result.layout_kept = result.layouts_built;
-        filled = false;
-      }
+  std::vector<const Layout*> mapped = {&map.layout.layout};
+  std::optional<MapAttempt> kept;  // a later layout's map that folds less than the best before it
+  for (std::size_t k = 0; k < corners_kept_at.size() && folds_ > 0 && work_.allows_another_map(); ++k) {
+    keeping.stretching.keep_corners_at = corners_kept_at[k];
+    MapAttempt later = attempt_map(later_layouts[k], source_, faces_, target_, map.anchors,
+                                   {&source_refined_, &target_refined_}, keeping, settings_, map.seconds,
+                                   work_, stage, mapped);
+    ++map.layouts_built;
+    if (later.repeats) continue;
+    mapped.push_back(&later_layouts[k].layout);
+    if (later.composed.untangled.flipped_after > composed_folds_) continue;
+    optimize_attempt(later, source_, faces_, target_, map.anchors, settings_, map.seconds, stage);
+    if (later.folds() < folds_) {
+      composed_folds_ = later.composed.untangled.flipped_after;
+      folds_ = later.folds();
+      kept = std::move(later);
+      map.layout_kept = map.layouts_built;
     }
   }
-  if (!filled) fill_map(result, attempt, source, target, curves, faces, names, stage);
-  result.seconds.total = total.lap();
-  return result;
+  if (kept) fill_map(map, *kept, source_, target_, curves_, faces_, names_, stage);
+  map.seconds.total += total.lap();
+}
+
+PairMapping map_through_anchors(const Mesh& source, const AnchorSet& source_anchors, const Mesh& target,
+                                const AnchorSet& target_anchors, const std::vector<FeatureCurve>& curves,
+                                const PairSettings& settings, PairWork& work, const StageCallback& on_stage,
+                                const std::function<bool(const PairMapping&)>& worth_retrying) {
+  PairMapping map;
+  AnchoredLayouts layouts(source, source_anchors, target, target_anchors, curves, settings, work, on_stage,
+                          map);
+  if (layouts.may_retry() && (!worth_retrying || worth_retrying(map))) layouts.retry(map);
+  return map;
 }
 
 // Whether `other` collapses no more template faces than `current` and covers the target's area
