@@ -136,19 +136,12 @@ AnchoredMap with_tips_recorded(AnchoredMap trial, const AnchoredMap& current,
   return trial;
 }
 
-// A map through tips that lost to the map without them, and those tips.
-struct LostTrial {
-  AnchoredMap trial;
-  std::vector<ExtremityAnchor> tips;
-};
-
 // A map through `current`'s anchors plus `tips`, when it is better than `current` (and than
 // `also_beat`, when given: another map through tips); nothing otherwise, or when there are no
-// tips or no map is left. A trial that loses with folds is left in `lost_folding`, when given.
+// tips or no map is left.
 std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, const AnchoredMap& current,
                                                       std::vector<ExtremityAnchor> tips, PairSeconds& seconds,
-                                                      const PairMapping* also_beat = nullptr,
-                                                      std::optional<LostTrial>* lost_folding = nullptr) {
+                                                      const PairMapping* also_beat = nullptr) {
   if (tips.empty() || !in.work.allows_another_map()) return std::nullopt;
   AnchoredMap tipped{{}, current.source_anchors, current.target_anchors};
   for (const ExtremityAnchor& tip : tips) {
@@ -172,11 +165,7 @@ std::optional<AnchoredMap> map_with_extremity_anchors(const PairInputs& in, cons
   if (!trial) return std::nullopt;
   seconds.add_stages(trial->seconds);
   tipped.map = std::move(*trial);
-  if (!wins(tipped.map)) {
-    if (lost_folding && !tipped.map.quality.flipped_faces.empty())
-      *lost_folding = LostTrial{std::move(tipped), std::move(tips)};
-    return std::nullopt;
-  }
+  if (!wins(tipped.map)) return std::nullopt;
   return with_tips_recorded(std::move(tipped), current, tips);
 }
 
@@ -240,23 +229,6 @@ std::optional<AnchoredMap> pulled_onto_tips(const PairInputs& in, const Anchored
     trial.target_anchors.anchors.push_back(tip.specs[1]);
   }
   return trial;
-}
-
-// `lost`, a map through `current`'s anchors plus tips that folds and loses to `current`, mapped
-// again with helper anchors behind its own disagreeing corners (with_helpers_behind_tips), when
-// that map is better than `current`. A first map's folds may be removed by a later layout or by
-// helpers, and the two ways lead on differently: on SHREC'19 19 [29 anthropometric] (session 43;
-// FAUST 000/080 [scan] until its landmarks inside faces were met) every map through the tips loses
-// on its own, and without this the pair keeps its first layout's map, E_L2 4.10 with the toes
-// squeezed (worse foot 11% of sqrt(area) off the truth); through the helpers 1.22 (3.5%).
-std::optional<AnchoredMap> tips_with_helpers(const PairInputs& in, const AnchoredMap& current,
-                                             const LostTrial& lost, PairSeconds& seconds) {
-  const PairSettings settings = tip_trial_settings(in, current, lost.tips);
-  const PairInputs trial_inputs{in.source, in.target, in.curves, settings, in.on_stage, in.work};
-  const auto wins = [&](const PairMapping& map) { return better_with_tips(map, current.map); };
-  std::optional<AnchoredMap> helped = with_helpers_behind_tips(trial_inputs, lost.trial, seconds, wins);
-  if (!helped || !wins(helped->map)) return std::nullopt;
-  return with_tips_recorded(std::move(*helped), current, lost.tips);
 }
 
 // Whether two sets of tips pair the same template vertices with the same target vertices.
@@ -528,9 +500,7 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
     return whole && (!pulled || better_with_tips(whole->map, pulled->map)) ? std::move(whole)
                                                                            : std::move(pulled);
   };
-  std::optional<LostTrial> lost_folding;  // the first trial that lost with folds
-  std::optional<AnchoredMap> tipped =
-      map_with_extremity_anchors(in, current, tips, seconds, pulled_map, &lost_folding);
+  std::optional<AnchoredMap> tipped = map_with_extremity_anchors(in, current, tips, seconds, pulled_map);
   // The tips matched by distances rest on the others: a doubtful match through the first map (a
   // little finger taken for the thumb) makes them name the rest of the hand wrongly, and the
   // hand tangles. Then once more without them.
@@ -539,14 +509,8 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   };
   if (!tipped && std::any_of(tips.begin(), tips.end(), by_distances)) {
     tips.erase(std::remove_if(tips.begin(), tips.end(), by_distances), tips.end());
-    tipped = map_with_extremity_anchors(in, current, tips, seconds, pulled_map,
-                                        lost_folding ? nullptr : &lost_folding);
+    tipped = map_with_extremity_anchors(in, current, tips, seconds, pulled_map);
   }
-  // Only in the first round: a later round's trial holds the earlier tips too, its corners disagree
-  // at many of them, and a helper behind each made maps that fold more (FAUST 000/020 and 000/030
-  // [scan]: 5 to 14 folds against the trial's 1 and 4, 5 to 7 s a pair spent for nothing).
-  if (!tipped && lost_folding && in.settings.tip_anchors && current.map.extremity_anchors.empty())
-    tipped = tips_with_helpers(in, current, *lost_folding, seconds);
   if (!tipped || !in.settings.retry_doubtful_tips) return finish(round_map(std::move(tipped)));
   // A rival to the winner: the map through `rival_tips`, made without `left_out`, replaces it when
   // less stretched by `margin` (and reports `left_out` as doubtful), or, when `judged_locally`, by

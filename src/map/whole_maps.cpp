@@ -500,10 +500,8 @@ std::vector<int> vertices_held_by(const Mesh& source, const PlacedAnchors& ancho
 // does.
 template <typename NeedsHelp, typename Replaces>
 std::optional<AnchoredMap> helpers_while(const PairInputs& in, const AnchoredMap& current,
-                                         PairSeconds& seconds,
-                                         const std::function<bool(const PairMapping&)>& worth_retrying,
-                                         const std::optional<std::vector<int>>& held, NeedsHelp needs_help,
-                                         Replaces replaces) {
+                                         PairSeconds& seconds, const std::optional<std::vector<int>>& held,
+                                         NeedsHelp needs_help, Replaces replaces) {
   std::optional<AnchoredMap> best;
   if (current.map.mismatched_corners.empty()) return best;
   // Helpers are always placed on the map without them: its layout shows the disagreeing tips.
@@ -522,7 +520,7 @@ std::optional<AnchoredMap> helpers_while(const PairInputs& in, const AnchoredMap
     if (in.on_stage) in.on_stage("mapping again with helper anchors behind the tips");
     std::optional<PairMapping> trial =
         map_if_possible(in.source, helped.source_anchors, in.target, helped.target_anchors, in.curves,
-                        in.settings, in.work, in.on_stage, worth_retrying);
+                        in.settings, in.work, in.on_stage);
     if (!trial) continue;
     seconds.add_stages(trial->seconds);
     if (!replaces(*trial, to_beat)) continue;
@@ -539,18 +537,16 @@ std::optional<AnchoredMap> helpers_while(const PairInputs& in, const AnchoredMap
 // A map through `current`'s anchors plus helper anchors behind its tips, when `current` folds and
 // its corners disagree (PairSettings::tip_anchors): each of tip_anchor_reaches in turn until a
 // map has no fold, a map replacing the best so far when it folds less. Nothing when no try
-// folds less than `current`. A try's later layouts are made only if `worth_retrying` (when given)
-// accepts its first layout's map.
-std::optional<AnchoredMap> with_helpers_behind_tips(
-    const PairInputs& in, const AnchoredMap& current, PairSeconds& seconds,
-    const std::function<bool(const PairMapping&)>& worth_retrying) {
+// folds less than `current`.
+std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const AnchoredMap& current,
+                                                    PairSeconds& seconds) {
   // These helpers may hold a landmark's vertex: kept from them (each then placed at its corner's
   // next farthest vertex), the 11 of FAUST 000/080 [72 scan] that share a corner with a scan
   // landmark's face moved, and its left hand came out tangled again (worse hand 0.21 -> 1.11% of
   // sqrt(area) off the truth). That pair's landmarks inside faces miss anyway (docs/evaluation.md,
   // session 41), which a better placement of anchors inside faces must mend first.
   return helpers_while(
-      in, current, seconds, worth_retrying, std::nullopt,
+      in, current, seconds, std::nullopt,
       [](const PairMapping& map) { return !map.quality.flipped_faces.empty(); }, folds_less);
 }
 
@@ -573,7 +569,7 @@ bool squeezes_less(const PairMapping& other, const PairMapping& current) {
 std::optional<AnchoredMap> with_helpers_behind_squeezed_tips(const PairInputs& in, const AnchoredMap& current,
                                                              PairSeconds& seconds) {
   return helpers_while(
-      in, current, seconds, {}, vertices_held_by(in.source, current.map.anchors[0]),
+      in, current, seconds, vertices_held_by(in.source, current.map.anchors[0]),
       [](const PairMapping& map) { return grossly_stretched_faces(map) > 0; }, squeezes_less);
 }
 

@@ -153,11 +153,9 @@ bool folds_less(const PairMapping& other, const PairMapping& current);
 // A map through `current`'s anchors plus helper anchors behind its tips, when `current` folds and
 // its corners disagree (PairSettings::tip_anchors): each of tip_anchor_reaches in turn until a
 // map has no fold, a map replacing the best so far when it folds less. Nothing when no try
-// folds less than `current`. A try's later layouts are made only if `worth_retrying` (when given)
-// accepts its first layout's map.
-std::optional<AnchoredMap> with_helpers_behind_tips(
-    const PairInputs& in, const AnchoredMap& current, PairSeconds& seconds,
-    const std::function<bool(const PairMapping&)>& worth_retrying = {});
+// folds less than `current`.
+std::optional<AnchoredMap> with_helpers_behind_tips(const PairInputs& in, const AnchoredMap& current,
+                                                    PairSeconds& seconds);
 
 // Template faces a map stretches past use: L2 stretch (eq. 5) over 10 times the map's own scale,
 // sqrt(image area / template area). A map that squeezes an unanchored protrusion into its root
