@@ -64,12 +64,12 @@ struct PairSettings {
   /// into the palm is matched through the map whose fingers the first round pulled out).
   int tip_rounds = 2;
   /// Small toes too: short tips in a row beside a matched tip (a big toe), aligned between the
-  /// meshes through the first map (map/extremity_anchors.h, match_short_tip_rows); when a round's
+  /// meshes through the first map (map/tip_rows.h, match_short_tip_rows); when a round's
   /// map through them loses, the round is made again without them. Measured on the realistic set
   /// (session 33): the FAUST maps' worse foot 0.488 -> 0.381% of sqrt(area) on average.
   bool tip_rows = true;
   /// With tip_rows: also pair each row's toes by a rigid fit of the template's foot onto the
-  /// target's (map/extremity_anchors.h, fit_tip_rows), and where that pairs them otherwise than the
+  /// target's (map/tip_rows.h, fit_tip_rows), and where that pairs them otherwise than the
   /// round did, map once more through the round's tips with the fit's pairs instead; keep that map
   /// when it folds no more and is at most 0.5% more stretched (E_L2). Measured (session 38) on the
   /// realistic set: of the four FAUST feet whose toes lay one toe over, two come right (000/010 and

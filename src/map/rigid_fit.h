@@ -2,7 +2,7 @@
 /// \file
 /// A rigid motion laying points onto a surface by iterated closest points (Besl and McKay 1992;
 /// each step the Umeyama 1991 least-squares rotation and translation, no scale). Ours, beyond the
-/// paper: the toes' rows (map/extremity_anchors.h, fit_tip_rows) fit the template's foot onto the
+/// paper: the toes' rows (map/tip_rows.h, fit_tip_rows) fit the template's foot onto the
 /// target's to tell the toes apart, where the first map has turned the forefoot by a toe.
 
 #include "core/closest_point.h"

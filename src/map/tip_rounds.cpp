@@ -3,6 +3,7 @@
 #include "core/closest_point.h"
 #include "core/stopwatch.h"
 #include "map/pair_finish.h"
+#include "map/tip_rows.h"
 
 #include <tbb/parallel_invoke.h>
 

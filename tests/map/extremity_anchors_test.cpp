@@ -2,6 +2,7 @@
 
 #include "layout/anchor_voronoi.h"
 #include "layout/layout_fixtures.h"
+#include "map/tip_rows.h"
 #include "support/test_data.h"
 
 #include <gtest/gtest.h>
