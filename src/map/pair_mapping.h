@@ -50,10 +50,9 @@ struct PairSettings {
   bool retry_keeping_corners = true;
   /// When the remesh still folds and the layout's corners disagree at some anchors
   /// (map/corner_report.h), map again with a helper anchor behind each of them
-  /// (map/tip_anchors.h) and keep that map when it folds less (map_pair). Also when every map
-  /// of the first round of extremity_anchors loses and one folds: that map again, with helpers
-  /// behind its own disagreeing corners, kept when it beats the map without tips. And, last, when
-  /// the map no round of tips replaced squeezes template faces to nothing without folding.
+  /// (map/tip_anchors.h) and keep that map when it folds less (map_pair): the map through tips
+  /// when one won and still folds, else the map through the landmarks. And, last, when the map no
+  /// round of tips replaced squeezes template faces to nothing without folding.
   bool tip_anchors = true;
   /// Map again through helper anchors at the tips of unanchored protrusions (fingers without
   /// landmarks) matched through the first map (map/extremity_anchors.h), and keep that map when
@@ -284,12 +283,13 @@ using StageCallback = std::function<void(const std::string& stage)>;
 ///
 /// First the map through the given anchors on its first layout. Then the rounds of helper anchors
 /// at protrusion tips matched through it (settings.extremity_anchors; see PairSettings), whose map
-/// replaces it on most pairs. Only when none does are the retries for its folds made: its later
-/// layouts (settings.retry_keeping_corners), then, with settings.tip_anchors, folds left and
-/// anchors whose corners disagree, the pair is mapped again through a helper anchor behind each
-/// such anchor (map/tip_anchors.h), at each of settings.tip_anchor_reaches in turn until a map has
-/// no fold; such a map replaces the best so far when it folds less, collapses no more template
-/// faces and has its area ratio within 2% of 1 (or no farther from 1 than before).
+/// replaces it on most pairs. Only when none does are its later layouts made
+/// (settings.retry_keeping_corners). Then, with settings.tip_anchors, when the map so far (through
+/// tips or not) still folds and anchors' corners disagree, the pair is mapped again through a
+/// helper anchor behind each such anchor (map/tip_anchors.h), at each of
+/// settings.tip_anchor_reaches in turn until a map has no fold; such a map replaces the best so
+/// far when it folds less, collapses no more template faces and has its area ratio within 2% of 1
+/// (or no farther from 1 than before).
 ///
 /// With settings.max_released_anchors > 0 and folds still left, anchors are released one at a
 /// time, starting again from the map through the given anchors (a helper or a tip is no landmark;
