@@ -201,18 +201,10 @@ void optimize_attempt(MapAttempt& attempt, const Mesh& source, const std::vector
   seconds.optimize_map += watch.lap();
 }
 
-// The anchors nearest the folded faces of a filled map (map/fold_report.h), ascending.
-std::vector<int> anchors_at_folds(const PairMapping& map, const std::vector<std::array<int, 3>>& faces,
-                                  const Mesh& target, const std::vector<std::string>& names) {
-  const LayoutSide& side = map.layout.layout.sides[0];
-  std::vector<Eigen::Vector3d> positions(map.remesh_vertices.rows());
-  for (std::size_t v = 0; v < positions.size(); ++v)
-    positions[v] = map.remesh_vertices.row(static_cast<Eigen::Index>(v)).transpose();
+// The anchors nearest a filled map's folded faces (PairMapping::folds_by_anchor), ascending.
+std::vector<int> anchors_at_folds(const PairMapping& map) {
   std::vector<int> anchors;
-  for (const AnchorFolds& folds :
-       folds_by_anchor(side.mesh, side.anchor_vertices, names, faces,
-                       measure_remesh_quality(faces, positions, map.correspondence, target).flipped_faces))
-    anchors.push_back(folds.anchor);
+  for (const AnchorFolds& folds : map.folds_by_anchor) anchors.push_back(folds.anchor);
   std::sort(anchors.begin(), anchors.end());
   return anchors;
 }
@@ -403,7 +395,7 @@ void AnchoredLayouts::retry(PairMapping& map) {
     if (on_stage_) on_stage_(name);
   };
   Stopwatch total;
-  const std::vector<int> folded = anchors_at_folds(map, faces_, target_, names_);
+  const std::vector<int> folded = anchors_at_folds(map);
   const std::vector<int> near_folds =
       with_layout_neighbours(folded, map.layout.layout, static_cast<int>(names_.size()));
   std::vector<std::vector<int>> corners_kept_at = {near_folds};
