@@ -132,10 +132,11 @@ void add_map_options(CLI::App& command, PairSettings& settings) {
                   "each anchor's image from its landmark; the miss is reported per anchor (default 0: exact)")
       ->check(at_least(0));
   command
-      .add_option("--max-maps", settings.max_maps,
-                  "Whole maps a pair may make in all, the first included: the second and third layouts, the "
-                  "helper anchors and the releases above each make one or more, and none starts once they are "
-                  "made (metrics.json maps.limit_reached; default 6)")
+      .add_option(
+          "--max-maps", settings.max_maps,
+          "Whole maps a pair may make in all, the first included: the second and third layouts, the "
+          "helper anchors and the releases above each make one or more, and none starts once they are "
+          "made (metrics.json maps.limit_reached; default 7)")
       ->check(CLI::Range(1, 1000));
   command
       .add_option("--work-vertices", settings.work_vertices,

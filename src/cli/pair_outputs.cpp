@@ -141,7 +141,7 @@ nlohmann::json extremity_anchors_json(const std::vector<ExtremityAnchor>& tips, 
                     {"matched_by", tip.matched_by == TipMatching::through_map ? "through the first map"
                                    : tip.matched_by == TipMatching::by_cell   ? "by the landmark's cell"
                                    : tip.matched_by == TipMatching::in_row    ? "in a row beside a tip"
-                                   : tip.matched_by == TipMatching::one_over ? "one over from the first map's"
+                                   : tip.matched_by == TipMatching::one_over ? "one finger over"
                                                                              : "by distances"},
                     {"pulled", k >= first_pulled}});
   }

@@ -65,7 +65,7 @@ enum class TipMatching {
   by_cell,       ///< match_extremities_by_cell: the farthest tips in one landmark's cell
   by_distances,  ///< match_extremities_by_distances: distances to the landmarks and matched tips near
   in_row,        ///< match_short_tip_rows: aligned in a row beside a matched tip (small toes)
-  one_over,      ///< one_over: a pair through the first map moved one finger over
+  one_over,      ///< one_over: a pair through the first map or by distances moved one finger over
 };
 
 /// A tip matched on both meshes.
@@ -149,10 +149,10 @@ std::vector<ExtremityAnchor> match_extremities_by_cell(const TipsAndAnchors& sou
 ExtremityAnchor matched_with_rival(const ExtremityAnchor& tip, const Mesh& source, const Mesh& target,
                                    const FirstMap& map);
 
-/// A pair matched through the first map (`pair`) that may be one finger over, and the two pairs one
-/// over; none when it looks in place. It may be when the tip nearest its template tip and the tip
-/// nearest its target tip (among the found tips, within kOneOverReach sqrt(area) of each) are
-/// matched on neither mesh (by `matched`) and lie on opposite sides of the pair: one farther than
+/// A pair (`pair`, matched through the first map or by distances) that may be one finger over, and
+/// the two pairs one over; none when it looks in place. It may be when the unmatched tip nearest its
+/// template tip and the unmatched tip nearest its target tip (among the found tips not in `matched`,
+/// within kOneOverReach sqrt(area) of each) lie on opposite sides of the pair: one farther than
 /// the pair's tip from the reference nearest the template tip (an anchor or a tip of `matched`,
 /// with its partner on the target), the other nearer. SHREC'19 21 [73 CAESAR]: the first map
 /// squeezed the template's ring and little fingers onto the target's little finger, and paired the

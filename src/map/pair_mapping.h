@@ -99,8 +99,8 @@ struct PairSettings {
   /// squeezed can pair a fingertip with another finger's. Likewise when a tip of the winner was
   /// matched by its landmark's cell and the target's next tip there lies nearly as far from the
   /// landmark (ExtremityAnchor::rival_target): map once more with that tip instead, each such cell
-  /// in turn; and when a pair through the map may be one finger over (one_over): map once more
-  /// with the pairs one over.
+  /// in turn; and when a pair through the map or by distances may be one finger over (one_over):
+  /// map once more with the pairs one over.
   bool retry_doubtful_tips = true;
   /// A protrusion tip ends a protrusion at least half this long and is the farthest point within
   /// this distance; fraction of sqrt(area) of each mesh (3.4 cm on an adult body).
@@ -120,7 +120,7 @@ struct PairSettings {
   /// pair may make in all, the first included: the later layouts, helper anchors and releases
   /// above each make one or more, and none starts once they are spent (reported as
   /// PairMapping::map_limit_reached). In maps, not seconds, so results stay deterministic.
-  int max_maps = 6;
+  int max_maps = 7;
   /// Replace Gamma by Gamma . phi so the remesh has no flipped face (map/remesh_untangling.h).
   bool untangle = true;
   UntangleSettings untangling;  ///< options of that step
@@ -252,7 +252,7 @@ struct PairMapping {
   /// Tips a round matched and the kept map was made without (PairSettings::retry_doubtful_tips):
   /// one the map before carried farthest from its partner, by more than 1.5 tip_reach, the map
   /// without it winning; a match by cell whose rival won (ExtremityAnchor::rival_target); or a
-  /// pair through the map whose pairs one over won (one_over). Not among `anchors`.
+  /// pair through the map or by distances whose pairs one over won (one_over). Not among `anchors`.
   std::vector<ExtremityAnchor> doubtful_tips;
   /// The anchors the map no longer passes through, in the order they were released; empty
   /// unless PairSettings::max_released_anchors > 0 and the map with every anchor folds.

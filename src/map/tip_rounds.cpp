@@ -572,13 +572,26 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   // 21 [73 CAESAR]: the template's right ring fingertip was paired with the target's little one, the
   // little finger squeezed into a disc on the back of the hand and the target's ring finger under
   // long faces (looked at).
-  for (const ExtremityAnchor& pair : through_map) {
+  // The pairs tried one over are those through the map and those matched by distances; the
+  // winner's matches by cell go into the trial before the rest is matched again, or a pair one
+  // over could take a cell's tip first. SHREC'19 1 [29 anthropometric]: the left ring and little
+  // fingertips were crossed (by distances), the middle one matched by its cell.
+  std::vector<ExtremityAnchor> tried_over;
+  for (const ExtremityAnchor& tip : winners_tips())
+    if ((tip.matched_by == TipMatching::through_map && holds_pair(chosen, tip)) ||
+        tip.matched_by == TipMatching::by_distances)
+      tried_over.push_back(tip);
+  for (const ExtremityAnchor& pair : tried_over) {
+    const std::vector<ExtremityAnchor> winners = winners_tips();
+    if (!holds_pair(winners, pair)) continue;
     const std::optional<std::array<ExtremityAnchor, 2>> over =
-        one_over(source_side, target_side, first, pair, winners_tips(), anchor_names(on_source));
-    if (!over || !holds_pair(chosen, pair)) continue;
+        one_over(source_side, target_side, first, pair, winners, anchor_names(on_source));
+    if (!over) continue;
     std::vector<ExtremityAnchor> with_over;
     for (const ExtremityAnchor& tip : chosen)
       if (tip_vertices(tip) != tip_vertices(pair)) with_over.push_back(tip);
+    for (const ExtremityAnchor& tip : winners)
+      if (tip.matched_by == TipMatching::by_cell && !holds_pair(with_over, tip)) with_over.push_back(tip);
     with_over.insert(with_over.end(), over->begin(), over->end());
     if (try_rival(with_the_rest(with_over), pair, kRivalMargin, true)) chosen = std::move(with_over);
   }

@@ -168,7 +168,7 @@ void expect_resumed_as_it_was_only(const std::string& option, const std::string&
 
 TEST(BatchCommand, AnArchiveOlderThanAnOptionResumesAtItsDefaultOnly) {
   expect_resumed_as_it_was_only("max_maps", " --max-maps 4",
-                                "option \"max_maps\" is not recorded (the archive predates it: 6), now 4",
+                                "option \"max_maps\" is not recorded (the archive predates it: 7), now 4",
                                 "");
 }
 

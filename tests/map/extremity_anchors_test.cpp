@@ -306,8 +306,9 @@ TEST_F(HandOfTips, MirrorTipsAreToldApartByTheirSideOfTheWristAndThumb) {
 // fingertip), p and q found tips (the ring and little ones). A pair of the template's p with the
 // target's q, both neighbours unmatched, is one finger over: the template's neighbour q lies beyond
 // p from the landmark, the target's neighbour p short of q. The pairs one over are p with p (the
-// pair's name) and q with q (named anew). A pair of p with p, both q's unmatched beyond it, is in
-// place; so is a pair whose neighbour is matched, or lies farther than a next finger.
+// pair's name) and q with q (named anew). A matched tip nearer p than q is passed over for q. A
+// pair of p with p, both q's unmatched beyond it, is in place; so is a pair whose only near
+// neighbour is matched, or lies farther than a next finger.
 TEST_F(HandOfTips, APairWhoseNeighboursLieOnOppositeSidesIsTriedOneOver) {
   const int r = at(6.0 / 12, 3.0 / 12, 3.0 / 12), p = at(7.0 / 12, 2.0 / 12, 3.0 / 12),
             q = at(8.0 / 12, 1.0 / 12, 3.0 / 12);
@@ -332,6 +333,21 @@ TEST_F(HandOfTips, APairWhoseNeighboursLieOnOppositeSidesIsTriedOneOver) {
   EXPECT_EQ((*over)[1].specs[1].name, "tip 2'");
   EXPECT_EQ((*over)[0].matched_by, TipMatching::one_over);
   EXPECT_EQ((*over)[1].matched_by, TipMatching::one_over);
+
+  // A matched tip w moved a tenth nearer p on the template than q is: the tip beside p is still q.
+  const int w = at(7.0 / 12, 3.0 / 12, 2.0 / 12);
+  Mesh nearer_w = mesh;
+  nearer_w.set_point(VertexHandle(w),
+                     to_point(0.9 * position(mesh, VertexHandle(w)) + 0.1 * position(mesh, VertexHandle(p))));
+  Extremities with_matched;
+  with_matched.tips = {p, w, q};
+  const ExtremityAnchor middle = tip_pair(w, w, "tip 3");
+  const std::optional<std::array<ExtremityAnchor, 2>> past_matched =
+      one_over({nearer_w, with_matched, landmark, 0.1}, {target, with_matched, landmark, 0.1},
+               {images, faces}, ring_on_little, {ring_on_little, middle}, {"tip 2"});
+  ASSERT_TRUE(past_matched.has_value());
+  EXPECT_EQ(pairs({(*past_matched)[0], (*past_matched)[1]}),
+            (std::vector<std::pair<int, int>>{{p, p}, {q, q}}));
 
   const ExtremityAnchor ring_on_ring = tip_pair(p, p, "tip 1");
   EXPECT_FALSE(one_over(source, on_target, {images, faces}, ring_on_ring, {ring_on_ring}, {}).has_value());
