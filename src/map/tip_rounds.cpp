@@ -578,8 +578,7 @@ std::optional<AnchoredMap> extremity_round(const PairInputs& in, const AnchoredM
   // fingertips were crossed (by distances), the middle one matched by its cell.
   std::vector<ExtremityAnchor> tried_over;
   for (const ExtremityAnchor& tip : winners_tips())
-    if ((tip.matched_by == TipMatching::through_map && holds_pair(chosen, tip)) ||
-        tip.matched_by == TipMatching::by_distances)
+    if (tip.matched_by == TipMatching::through_map || tip.matched_by == TipMatching::by_distances)
       tried_over.push_back(tip);
   for (const ExtremityAnchor& pair : tried_over) {
     const std::vector<ExtremityAnchor> winners = winners_tips();

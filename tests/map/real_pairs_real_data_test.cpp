@@ -478,8 +478,8 @@ std::vector<const ExtremityAnchor*> expect_tips_on_their_own_fingers(const Shrec
     const Eigen::Vector3d on_target =
         position(shrec.target.mesh, VertexHandle(std::get<AnchorVertex>(tip->specs[1].location).index));
     for (const ExtremityAnchor* other : tips) {
-      const int other_truth = shrec.truth[std::get<AnchorVertex>(other->specs[0].location).index];
       if (other == tip) continue;
+      const int other_truth = shrec.truth[std::get<AnchorVertex>(other->specs[0].location).index];
       EXPECT_LT(tip_off_truth(shrec, *tip),
                 (on_target - position(shrec.target.mesh, VertexHandle(other_truth))).norm())
           << tip->specs[0].name << " lies nearer " << other->specs[0].name << "'s truth";
