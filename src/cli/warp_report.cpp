@@ -11,7 +11,8 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-nlohmann::ordered_json number(double value) {
+// A figure of the ordered report: null when it is not finite (not measured).
+nlohmann::ordered_json ordered_number(double value) {
   return std::isfinite(value) ? nlohmann::ordered_json(value) : nlohmann::ordered_json();
 }
 
@@ -114,8 +115,9 @@ nlohmann::ordered_json warp_target_json(const WarpedGarment& g, const std::strin
     // Vertex counts are written as integers (they are doubles only in the HDF5 table's columns).
     const bool count = name == "placed_inside" || name == "inside" || name == "pushed" || name == "moved" ||
                        name == "still_close";
-    figures[name] = count && std::isfinite(values[k]) ? nlohmann::ordered_json(static_cast<long long>(values[k]))
-                                                      : number(values[k]);
+    figures[name] = count && std::isfinite(values[k])
+                        ? nlohmann::ordered_json(static_cast<long long>(values[k]))
+                        : ordered_number(values[k]);
   }
   target["figures"] = figures;
   return target;

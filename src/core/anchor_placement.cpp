@@ -14,12 +14,6 @@
 namespace xparam {
 namespace {
 
-std::string in_quotes(const std::string& name) { return "\"" + name + "\""; }
-
-[[noreturn]] void fail(const AnchorSpec& anchor, const std::string& what) {
-  throw InputError(where(anchor) + ": anchor " + in_quotes(anchor.name) + ": " + what);
-}
-
 // Places anchors one after the other on a working copy of the refined mesh.
 class AnchorPlacer {
  public:
@@ -44,8 +38,9 @@ class AnchorPlacer {
     placed.name = anchor.name;
     if (const auto* vertex = std::get_if<AnchorVertex>(&anchor.location)) {
       if (vertex->index >= static_cast<int>(input_.n_vertices())) {
-        fail(anchor, "vertex index " + std::to_string(vertex->index) + " out of range (the mesh has " +
-                         std::to_string(input_.n_vertices()) + " vertices)");
+        fail_on_anchor(anchor, "vertex index " + std::to_string(vertex->index) +
+                                   " out of range (the mesh has " + std::to_string(input_.n_vertices()) +
+                                   " vertices)");
       }
       // Refinement only appends vertices, so input vertex i is refined vertex i.
       placed.vertex = mesh_.vertex_handle(vertex->index);
@@ -57,8 +52,8 @@ class AnchorPlacer {
     } else {
       const SurfacePoint& point = std::get<SurfacePoint>(anchor.location);
       if (point.face >= static_cast<int>(input_.n_faces())) {
-        fail(anchor, "face " + std::to_string(point.face) + " out of range (the mesh has " +
-                         std::to_string(input_.n_faces()) + " faces)");
+        fail_on_anchor(anchor, "face " + std::to_string(point.face) + " out of range (the mesh has " +
+                                   std::to_string(input_.n_faces()) + " faces)");
       }
       // Clamp what the tolerance let through, so the point is on the face, not beside it.
       const Eigen::Vector3d bary = point.bary.cwiseMax(0.0);
@@ -190,8 +185,8 @@ PlacedAnchors place_anchors(Mesh& mesh, const Mesh& input, const AnchorSet& anch
     const auto [it, inserted] = by_vertex.emplace(placed.vertex.idx(), i);
     if (!inserted) {
       const AnchorSpec& first = anchors.anchors[it->second];
-      fail(anchor, "lands on the same vertex (" + std::to_string(placed.vertex.idx()) + ") as anchor " +
-                       in_quotes(first.name) + " (" + where(first) + ")");
+      fail_on_anchor(anchor, "lands on the same vertex (" + std::to_string(placed.vertex.idx()) +
+                                 ") as anchor " + in_quotes(first.name) + " (" + where(first) + ")");
     }
     if (placed.insertion != AnchorInsertion::ExistingVertex) ++result.vertices_inserted;
     if (std::string warning = snap_warning(anchor, placed.snap_distance, result.bbox_diagonal, settings);

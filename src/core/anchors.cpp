@@ -9,8 +9,6 @@
 namespace xparam {
 namespace {
 
-std::string in_quotes(const std::string& name) { return "\"" + name + "\""; }
-
 // `"a" (file:3), "b" (file:7)`: each name with where it is given.
 std::string join_quoted(const std::vector<const AnchorSpec*>& anchors) {
   std::string out;
@@ -19,10 +17,6 @@ std::string join_quoted(const std::vector<const AnchorSpec*>& anchors) {
     out.append(in_quotes(anchor->name)).append(" (").append(where(*anchor)).append(")");
   }
   return out;
-}
-
-[[noreturn]] void fail(const AnchorSpec& anchor, const std::string& what) {
-  throw InputError(where(anchor) + ": anchor " + in_quotes(anchor.name) + ": " + what);
 }
 
 // The anchors whose names are not keys of `present`, in their order.
@@ -57,6 +51,12 @@ std::string where(const AnchorSpec& anchor) {
   return anchor.file + ":" + std::to_string(anchor.line);
 }
 
+std::string in_quotes(const std::string& name) { return "\"" + name + "\""; }
+
+void fail_on_anchor(const AnchorSpec& anchor, const std::string& what) {
+  throw InputError(where(anchor) + ": anchor " + in_quotes(anchor.name) + ": " + what);
+}
+
 std::string barycentric_problem(const Eigen::Vector3d& bary) {
   std::ostringstream out;
   if (!bary.allFinite()) {
@@ -87,13 +87,14 @@ SurfacePoint vertex_surface_point(const Mesh& mesh, VertexHandle v) {
 void check_anchor(const AnchorSpec& anchor) {
   if (anchor.name.empty()) throw InputError(where(anchor) + ": anchor with an empty name");
   if (const auto* vertex = std::get_if<AnchorVertex>(&anchor.location)) {
-    if (vertex->index < 0) fail(anchor, "negative vertex index " + std::to_string(vertex->index));
+    if (vertex->index < 0) fail_on_anchor(anchor, "negative vertex index " + std::to_string(vertex->index));
   } else if (const auto* position = std::get_if<AnchorPosition>(&anchor.location)) {
-    if (!position->point.allFinite()) fail(anchor, "position is not finite");
+    if (!position->point.allFinite()) fail_on_anchor(anchor, "position is not finite");
   } else {
     const SurfacePoint& point = std::get<SurfacePoint>(anchor.location);
-    if (point.face < 0) fail(anchor, "negative face index " + std::to_string(point.face));
-    if (const std::string problem = barycentric_problem(point.bary); !problem.empty()) fail(anchor, problem);
+    if (point.face < 0) fail_on_anchor(anchor, "negative face index " + std::to_string(point.face));
+    if (const std::string problem = barycentric_problem(point.bary); !problem.empty())
+      fail_on_anchor(anchor, problem);
   }
 }
 
@@ -107,8 +108,8 @@ void check_anchor_set(const AnchorSet& set) {
     const auto [it, inserted] = by_vertex.emplace(vertex->index, i);
     if (!inserted) {
       const AnchorSpec& first = set.anchors[it->second];
-      fail(set.anchors[i], "same vertex " + std::to_string(vertex->index) + " as anchor " +
-                               in_quotes(first.name) + " (" + where(first) + ")");
+      fail_on_anchor(set.anchors[i], "same vertex " + std::to_string(vertex->index) + " as anchor " +
+                                         in_quotes(first.name) + " (" + where(first) + ")");
     }
   }
   if (static_cast<int>(set.anchors.size()) < kMinAnchors) {

@@ -54,6 +54,12 @@ inline constexpr double kBarycentricTolerance = 1e-4;
 /// the prefix of every message about it.
 std::string where(const AnchorSpec& anchor);
 
+/// `name` in double quotes, as every message about an anchor or a member prints it.
+std::string in_quotes(const std::string& name);
+
+/// \throw InputError "where(anchor): anchor "name": what".
+[[noreturn]] void fail_on_anchor(const AnchorSpec& anchor, const std::string& what);
+
 /// Empty when `bary` is a usable barycentric triple (finite, every entry >= -kBarycentricTolerance,
 /// sum within kBarycentricTolerance of 1); otherwise what is wrong with it, e.g.
 /// "barycentric coordinates sum to 0.9 instead of 1".

@@ -1,17 +1,9 @@
 #include "geodesic/funnel.h"
 
 #include "core/errors.h"
+#include "core/planar.h"
 
 namespace xparam {
-namespace {
-
-// z of the cross product: > 0 when b points to the left of a.
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-bool portal_has(const Portal& portal, VertexHandle v) { return portal.left == v || portal.right == v; }
-
-}  // namespace
-
 std::vector<FunnelApex> funnel_path(const std::vector<Portal>& portals, const FunnelApex& start,
                                     const FunnelApex& end) {
   const int n = static_cast<int>(portals.size());
@@ -39,16 +31,16 @@ std::vector<FunnelApex> funnel_path(const std::vector<Portal>& portals, const Fu
       // The end: inside the funnel (rays included) it is seen straight from the apex;
       // otherwise the path bends at the side it lies beyond.
       if (empty) break;
-      if (cross(right.point - a, end.point - a) < 0.0) {
+      if (cross2(right.point - a, end.point - a) < 0.0) {
         restart_at(right);
-      } else if (cross(end.point - a, left.point - a) < 0.0) {
+      } else if (cross2(end.point - a, left.point - a) < 0.0) {
         restart_at(left);
       } else {
         break;
       }
       continue;
     }
-    if (turning_at_apex && portal_has(portals[i], apex.vertex)) {
+    if (turning_at_apex && portals[i].has(apex.vertex)) {
       ++i;
       continue;
     }
@@ -64,16 +56,16 @@ std::vector<FunnelApex> funnel_path(const std::vector<Portal>& portals, const Fu
     }
     // Right side: a new right point on or inside the right ray narrows the funnel, unless it
     // reaches the left ray, in which case the path bends at the left point.
-    if (cross(right.point - a, next_right.point - a) >= 0.0) {
-      if (cross(next_right.point - a, left.point - a) > 0.0) {
+    if (cross2(right.point - a, next_right.point - a) >= 0.0) {
+      if (cross2(next_right.point - a, left.point - a) > 0.0) {
         right = next_right;
       } else {
         restart_at(left);
         continue;
       }
     }
-    if (cross(next_left.point - a, left.point - a) >= 0.0) {
-      if (cross(right.point - a, next_left.point - a) > 0.0) {
+    if (cross2(next_left.point - a, left.point - a) >= 0.0) {
+      if (cross2(right.point - a, next_left.point - a) > 0.0) {
         left = next_left;
       } else {
         restart_at(right);

@@ -18,6 +18,8 @@ struct Portal {
   VertexHandle right;
   Eigen::Vector2d left_point = Eigen::Vector2d::Zero();
   Eigen::Vector2d right_point = Eigen::Vector2d::Zero();
+
+  bool has(VertexHandle v) const { return left == v || right == v; }
 };
 
 /// A corner of a funnel path: a portal endpoint the path bends at, or the path's start or end.

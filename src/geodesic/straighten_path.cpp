@@ -1,6 +1,7 @@
 #include "geodesic/straighten_path.h"
 
 #include "core/errors.h"
+#include "core/planar.h"
 #include "core/provenance.h"
 #include "geodesic/face_strip.h"
 #include "geodesic/funnel.h"
@@ -19,13 +20,8 @@ namespace {
 
 // Unsigned angle between two plane vectors.
 double angle_between(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
+  return std::atan2(std::abs(cross2(a, b)), a.dot(b));
 }
-
-// z of the cross product of two plane vectors.
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-bool portal_has(const Portal& portal, VertexHandle v) { return portal.left == v || portal.right == v; }
 
 // Where the funnel path crosses one portal: at an endpoint vertex, or at parameter t from the
 // right endpoint (0) to the left one (1).
@@ -181,8 +177,8 @@ class Straightener {
     const int n = static_cast<int>(portals.size());
     int lo = std::clamp(portal, 0, n);
     int hi = std::clamp(portal, -1, n - 1);
-    while (lo - 1 >= 0 && portal_has(portals[lo - 1], v)) --lo;
-    while (hi + 1 < n && portal_has(portals[hi + 1], v)) ++hi;
+    while (lo - 1 >= 0 && portals[lo - 1].has(v)) --lo;
+    while (hi + 1 < n && portals[hi + 1].has(v)) ++hi;
     return {lo, hi};
   }
 
@@ -256,8 +252,8 @@ class Straightener {
     for (int i = from.portal + 1; i < to.portal; ++i) {
       if (crossings[i].known) continue;
       const Portal& portal = portals[i];
-      const double t = std::clamp(cross(from.point - portal.right_point, direction) /
-                                      cross(portal.left_point - portal.right_point, direction),
+      const double t = std::clamp(cross2(from.point - portal.right_point, direction) /
+                                      cross2(portal.left_point - portal.right_point, direction),
                                   0.0, 1.0);
       XP_ASSERT_FINITE(t);
       crossings[i] = {VertexHandle(), t, true};

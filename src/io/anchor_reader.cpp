@@ -18,8 +18,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::string in_quotes(const std::string& name) { return "\"" + name + "\""; }
-
 // ---------------------------------------------------------------------------------------
 // Numbers, shared by the text and picked-points readers.
 

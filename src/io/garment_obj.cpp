@@ -5,7 +5,6 @@
 #include "io/mesh_reader.h"
 #include "io/text_file.h"
 
-#include <charconv>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -84,12 +83,6 @@ void read_uvs(const std::string& source, std::string_view text, GarmentObj& garm
   }
 }
 
-void append_number(std::string& out, double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  out.append(buffer, result.ptr);
-}
-
 }  // namespace
 
 GarmentObj read_garment_obj(const std::filesystem::path& path) {
@@ -111,15 +104,15 @@ void write_garment_obj(const std::filesystem::path& path, const GarmentObj& garm
     text += "v";
     for (int k = 0; k < 3; ++k) {
       text += ' ';
-      append_number(text, p[k]);
+      append_shortest(text, p[k]);
     }
     text += '\n';
   }
   for (const Eigen::Vector2d& uv : garment.uvs) {
     text += "vt ";
-    append_number(text, uv[0]);
+    append_shortest(text, uv[0]);
     text += ' ';
-    append_number(text, uv[1]);
+    append_shortest(text, uv[1]);
     text += '\n';
   }
   const bool with_uvs = !garment.triangle_uvs.empty();

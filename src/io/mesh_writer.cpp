@@ -4,11 +4,11 @@
 #include "io/mesh_writer.h"
 
 #include "core/errors.h"
+#include "io/text_file.h"
 
 #include <algorithm>
 #include <bit>
 #include <cerrno>
-#include <charconv>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -19,13 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void append_number(std::string& out, double value) {
-  char buffer[32];
-  // Shortest decimal that reads back to the same double.
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  XP_ASSERT(result.ec == std::errc());
-  out.append(buffer, result.ptr);
-}
+void append_number(std::string& out, double value) { append_shortest(out, value); }
 
 void append_number(std::string& out, long long value) { out += std::to_string(value); }
 

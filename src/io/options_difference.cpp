@@ -8,10 +8,9 @@
 namespace xparam {
 namespace {
 
-using Json = nlohmann::json;
-
 // Every leaf of `value` by its dotted key path.
-void flatten(const Json& value, const std::string& prefix, std::map<std::string, std::string>& out) {
+void flatten(const nlohmann::json& value, const std::string& prefix,
+             std::map<std::string, std::string>& out) {
   if (value.is_object() && !value.empty()) {
     for (const auto& [key, member] : value.items()) flatten(member, prefix.empty() ? key : prefix + "." + key, out);
     return;
@@ -19,7 +18,7 @@ void flatten(const Json& value, const std::string& prefix, std::map<std::string,
   out[prefix] = value.dump();
 }
 
-std::map<std::string, std::string> leaves(const Json& value) {
+std::map<std::string, std::string> leaves(const nlohmann::json& value) {
   std::map<std::string, std::string> out;
   if (!value.is_discarded() && value.is_object()) flatten(value, "", out);
   return out;
@@ -30,13 +29,14 @@ std::map<std::string, std::string> leaves(const Json& value) {
 std::string options_difference(const std::string& recorded_json, const std::string& current_json,
                                const std::string& implied_json) {
   if (recorded_json == current_json) return {};
-  const Json recorded = Json::parse(recorded_json, nullptr, false);
-  const Json current = Json::parse(current_json, nullptr, false);
+  const nlohmann::json recorded = nlohmann::json::parse(recorded_json, nullptr, false);
+  const nlohmann::json current = nlohmann::json::parse(current_json, nullptr, false);
   if (recorded.is_discarded() || current.is_discarded() || !recorded.is_object() || !current.is_object())
     return "options were " + recorded_json + ", now " + current_json;
   const std::map<std::string, std::string> before = leaves(recorded);
   const std::map<std::string, std::string> after = leaves(current);
-  const std::map<std::string, std::string> implied = leaves(Json::parse(implied_json, nullptr, false));
+  const std::map<std::string, std::string> implied =
+      leaves(nlohmann::json::parse(implied_json, nullptr, false));
   std::set<std::string> keys;
   for (const auto& [key, value] : before) keys.insert(key);
   for (const auto& [key, value] : after) keys.insert(key);

@@ -2,6 +2,7 @@
 
 #include "core/errors.h"
 
+#include <charconv>
 #include <fstream>
 
 namespace xparam {
@@ -18,6 +19,13 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
   std::error_code error;
   std::filesystem::rename(temporary, path, error);
   if (error) throw InputError(path.string() + ": cannot be written (" + error.message() + ")");
+}
+
+void append_shortest(std::string& out, double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  XP_ASSERT(result.ec == std::errc());
+  out.append(buffer, result.ptr);
 }
 
 }  // namespace xparam

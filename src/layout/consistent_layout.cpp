@@ -23,8 +23,6 @@
 namespace xparam {
 namespace {
 
-const char* side_name(int side) { return side == 0 ? "source" : "target"; }
-
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

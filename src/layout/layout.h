@@ -43,6 +43,9 @@ struct Layout {
   std::array<LayoutSide, 2> sides;
 };
 
+/// "source" for side 0, "target" for side 1: how messages name a side.
+inline const char* side_name(int side) { return side == 0 ? "source" : "target"; }
+
 /// Layout edge of layout halfedge h.
 inline int layout_edge_of(int h) { return h / 2; }
 

@@ -8,8 +8,6 @@
 namespace xparam {
 namespace {
 
-const char* side_name(int side) { return side == 0 ? "source" : "target"; }
-
 // Collects violations up to a cap and counts the rest.
 class Report {
  public:

@@ -1,6 +1,7 @@
 #include "map/remesh_untangling.h"
 
 #include "core/errors.h"
+#include "core/planar.h"
 #include "core/stopwatch.h"
 
 #include <tbb/blocked_range.h>
@@ -22,8 +23,6 @@ namespace {
 
 // A flipped face scores below this, however little it folds.
 constexpr double kTiny = 1e-300;
-
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // A candidate's verdict on the faces it touches.
 struct Score {

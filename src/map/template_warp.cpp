@@ -1,5 +1,7 @@
 #include "map/template_warp.h"
 
+#include "core/planar.h"
+
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
@@ -9,8 +11,6 @@
 
 namespace xparam {
 namespace {
-
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Barycentrics of p in triangle (a, b, c) of the plane (not clamped).
 Eigen::Vector3d barycentric2(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,

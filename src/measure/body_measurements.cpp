@@ -15,7 +15,8 @@
 namespace xparam {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// What a measurement that cannot be taken (no plane, no section) reads.
+constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
 
 Eigen::Vector3d point_of(const Eigen::MatrixX3d& vertex_points, int vertex) {
   XP_ASSERT(vertex >= 0 && vertex < vertex_points.rows());
@@ -40,9 +41,9 @@ std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> plane_of(const PlaneR
 double plane_girth(const MeasurementDefinition& m, const Mesh& surface, const Eigen::MatrixX3d& vertex_points,
                    const Eigen::Matrix3d& frame) {
   const auto plane = plane_of(m.plane, vertex_points, frame);
-  if (!plane) return kNaN;
+  if (!plane) return kNotMeasured;
   const std::vector<SectionLoop> loops = plane_section(surface, plane->first, plane->second);
-  if (loops.empty()) return kNaN;
+  if (loops.empty()) return kNotMeasured;
   // The loop the tape goes round: nearest the reference point (first such loop on a tie).
   const Eigen::Vector3d near = point_of(vertex_points, m.near);
   const auto nearest = std::min_element(loops.begin(), loops.end(), [&](const SectionLoop& a, const SectionLoop& b) {
@@ -94,7 +95,7 @@ double measure_one(const MeasurementDefinition& measurement, const Mesh& surface
       return curve_lengths[static_cast<std::size_t>(measurement.curve)];
   }
   XP_ASSERT_MSG(false, "unknown measurement kind");
-  return kNaN;
+  return kNotMeasured;
 }
 
 std::vector<double> measure_surface(const MeasurementSet& set, const Mesh& surface,

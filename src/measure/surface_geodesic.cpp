@@ -15,7 +15,8 @@
 namespace xparam {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The length of a path that cannot be traced as a shortest one.
+constexpr double kNoLength = std::numeric_limits<double>::quiet_NaN();
 
 // Makes surface points vertices of `mesh`, which starts as a copy of the measured surface. A
 // split keeps the split face's handle for one piece and appends the others, so a point of input
@@ -155,8 +156,8 @@ SurfaceGeodesic surface_geodesic(const Mesh& surface, const std::vector<Eigen::V
     if (from != to) {
       const std::vector<VertexHandle> path = edge_path(mesh, from, to);
       if (path.empty()) {
-        length = kNaN;
-        result.edge_path_length = kNaN;
+        length = kNoLength;
+        result.edge_path_length = kNoLength;
       } else {
         result.edge_path_length += chain_length(mesh, path);
         try {
@@ -164,7 +165,7 @@ SurfaceGeodesic surface_geodesic(const Mesh& surface, const std::vector<Eigen::V
           length = curve.length;
           result.converged = result.converged && curve.converged;
         } catch (const LayoutError&) {
-          length = kNaN;  // the straightened path would cross a face twice: not a shortest path
+          length = kNoLength;  // the straightened path would cross a face twice: not a shortest path
         }
       }
     }

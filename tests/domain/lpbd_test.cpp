@@ -12,8 +12,6 @@
 namespace xparam {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 void expect_corner(const Eigen::Vector2d& actual, double x, double y, double tolerance = 1e-12) {
   EXPECT_NEAR(actual.x(), x, tolerance);
   EXPECT_NEAR(actual.y(), y, tolerance);
@@ -30,15 +28,15 @@ void expect_sides_preserved(const Lpbd& lpbd, double tolerance) {
 
 TEST(LawOfCosines, ValidAnglesAndThePapersRuleOutsideTheRange) {
   // 3-4-5 right triangle: the right angle faces the hypotenuse.
-  EXPECT_NEAR(law_of_cosines_angle(5.0, 3.0, 4.0), kPi / 2, 1e-15);
+  EXPECT_NEAR(law_of_cosines_angle(5.0, 3.0, 4.0), std::numbers::pi / 2, 1e-15);
   EXPECT_NEAR(law_of_cosines_angle(3.0, 4.0, 5.0), std::acos(0.8), 1e-15);
   // Cosine exactly -1 and +1: the flat and the zero angle, where the rule must be continuous.
-  EXPECT_NEAR(law_of_cosines_angle(2.0, 1.0, 1.0), kPi, 1e-15);
+  EXPECT_NEAR(law_of_cosines_angle(2.0, 1.0, 1.0), std::numbers::pi, 1e-15);
   EXPECT_NEAR(law_of_cosines_angle(0.0, 1.0, 1.0), 0.0, 1e-15);
   // s = (1 + 1 - 9) / 2 = -3.5 -> -s*pi = 3.5 pi.
-  EXPECT_NEAR(law_of_cosines_angle(3.0, 1.0, 1.0), 3.5 * kPi, 1e-14);
+  EXPECT_NEAR(law_of_cosines_angle(3.0, 1.0, 1.0), 3.5 * std::numbers::pi, 1e-14);
   // s = (1 + 9 - 1) / 6 = 1.5 -> (1 - s)*pi = -0.5 pi.
-  EXPECT_NEAR(law_of_cosines_angle(1.0, 1.0, 3.0), -0.5 * kPi, 1e-14);
+  EXPECT_NEAR(law_of_cosines_angle(1.0, 1.0, 3.0), -0.5 * std::numbers::pi, 1e-14);
 }
 
 TEST(HeronArea, HandComputedAndDegenerate) {
@@ -58,7 +56,7 @@ TEST(TriangleLpbd, RightTriangleHandComputed) {
   EXPECT_TRUE(t.valid);
   EXPECT_TRUE(t.convex);
   EXPECT_NEAR(t.angles[0], std::acos(0.6), 1e-15);
-  EXPECT_NEAR(t.angles[1], kPi / 2, 1e-15);
+  EXPECT_NEAR(t.angles[1], std::numbers::pi / 2, 1e-15);
   EXPECT_NEAR(t.angles[2], std::acos(0.8), 1e-15);
   EXPECT_NEAR(t.area, 6.0, 1e-14);
   expect_corner(t.corners[0], 0.0, 0.0);
@@ -69,7 +67,7 @@ TEST(TriangleLpbd, RightTriangleHandComputed) {
 
 TEST(TriangleLpbd, EquilateralIsCounterClockwise) {
   const Lpbd t = triangle_lpbd(2.0, 2.0, 2.0);
-  for (double a : t.angles) EXPECT_NEAR(a, kPi / 3, 1e-15);
+  for (double a : t.angles) EXPECT_NEAR(a, std::numbers::pi / 3, 1e-15);
   expect_corner(t.corners[2], 1.0, std::sqrt(3.0));
   EXPECT_NEAR(t.area, std::sqrt(3.0), 1e-14);
 }
@@ -80,17 +78,17 @@ TEST(TriangleLpbd, DegenerateTrianglesFollowThePaper) {
   EXPECT_FALSE(t.convex);
   EXPECT_EQ(t.area, kDegenerateLpbdArea);
   // Corner 0 between sides 0 (1) and 2 (3), facing side 1 (1): s = 1.5.
-  EXPECT_NEAR(t.angles[0], -0.5 * kPi, 1e-14);
+  EXPECT_NEAR(t.angles[0], -0.5 * std::numbers::pi, 1e-14);
   // Corner 1 between sides 0 and 1, facing side 2 (3): s = -3.5.
-  EXPECT_NEAR(t.angles[1], 3.5 * kPi, 1e-14);
-  EXPECT_NEAR(t.angles[2], -0.5 * kPi, 1e-14);
+  EXPECT_NEAR(t.angles[1], 3.5 * std::numbers::pi, 1e-14);
+  EXPECT_NEAR(t.angles[2], -0.5 * std::numbers::pi, 1e-14);
   // Placement with clamped cosines: collinear, corner 2 back on the x axis.
   expect_corner(t.corners[2], 3.0, 0.0);
 
   const Lpbd flat = triangle_lpbd(1.0, 1.0, 2.0);  // exactly on the edge of validity
   EXPECT_FALSE(flat.valid);
   EXPECT_EQ(flat.area, kDegenerateLpbdArea);
-  EXPECT_NEAR(flat.angles[1], kPi, 1e-15);
+  EXPECT_NEAR(flat.angles[1], std::numbers::pi, 1e-15);
 }
 
 TEST(TriangleLpbd, RejectsNonPositiveLengths) {
@@ -100,10 +98,11 @@ TEST(TriangleLpbd, RejectsNonPositiveLengths) {
 }
 
 TEST(PolygonLpbd, SquareWithExactAngles) {
-  const Lpbd q = polygon_lpbd({1.0, 1.0, 1.0, 1.0}, {kPi / 2, kPi / 2, kPi / 2, kPi / 2});
+  const Lpbd q = polygon_lpbd({1.0, 1.0, 1.0, 1.0}, {std::numbers::pi / 2, std::numbers::pi / 2,
+                                                     std::numbers::pi / 2, std::numbers::pi / 2});
   ASSERT_TRUE(q.valid);
   EXPECT_TRUE(q.convex);
-  for (double a : q.angles) EXPECT_NEAR(a, kPi / 2, 1e-14);
+  for (double a : q.angles) EXPECT_NEAR(a, std::numbers::pi / 2, 1e-14);
   expect_corner(q.corners[0], 0.0, 0.0);
   expect_corner(q.corners[1], 1.0, 0.0);
   expect_corner(q.corners[2], 1.0, 1.0);
@@ -117,15 +116,15 @@ TEST(PolygonLpbd, RectangleWithPerturbedAnglesBecomesTheClosestParallelogram) {
   // least squares to theta gives x = (th0 + th2 - th1 - th3 + 2 pi) / 4.
   const double d[4] = {0.1, -0.05, 0.02, -0.07};
   std::vector<double> theta;
-  for (double di : d) theta.push_back(kPi / 2 + di);
+  for (double di : d) theta.push_back(std::numbers::pi / 2 + di);
   const Lpbd q = polygon_lpbd({2.0, 1.0, 2.0, 1.0}, theta);
   ASSERT_TRUE(q.valid);
-  const double x = (theta[0] + theta[2] - theta[1] - theta[3] + 2 * kPi) / 4;
-  EXPECT_NEAR(x, kPi / 2 + 0.06, 1e-15);
+  const double x = (theta[0] + theta[2] - theta[1] - theta[3] + 2 * std::numbers::pi) / 4;
+  EXPECT_NEAR(x, std::numbers::pi / 2 + 0.06, 1e-15);
   EXPECT_NEAR(q.angles[0], x, 1e-12);
-  EXPECT_NEAR(q.angles[1], kPi - x, 1e-12);
+  EXPECT_NEAR(q.angles[1], std::numbers::pi - x, 1e-12);
   EXPECT_NEAR(q.angles[2], x, 1e-12);
-  EXPECT_NEAR(q.angles[3], kPi - x, 1e-12);
+  EXPECT_NEAR(q.angles[3], std::numbers::pi - x, 1e-12);
   EXPECT_NEAR(q.area, 2.0 * std::sin(x), 1e-12);
   EXPECT_LE(q.closure_error, 1e-12 * 6.0);
   expect_sides_preserved(q, 1e-12);
@@ -135,11 +134,11 @@ TEST(PolygonLpbd, RegularPentagonFromAConeLikePatch) {
   // Surface angles all too large by the same amount (a patch around a saddle): shifting them
   // back onto the angle sum already gives the closed regular pentagon.
   const std::vector<double> lengths(5, 1.0);
-  const std::vector<double> theta(5, 3 * kPi / 5 + 0.1);
+  const std::vector<double> theta(5, 3 * std::numbers::pi / 5 + 0.1);
   const Lpbd p = polygon_lpbd(lengths, theta);
   ASSERT_TRUE(p.valid);
   EXPECT_TRUE(p.convex);
-  for (double a : p.angles) EXPECT_NEAR(a, 3 * kPi / 5, 1e-13);
+  for (double a : p.angles) EXPECT_NEAR(a, 3 * std::numbers::pi / 5, 1e-13);
   EXPECT_NEAR(p.area, 0.25 * std::sqrt(5.0 * (5.0 + 2.0 * std::sqrt(5.0))), 1e-12);
   EXPECT_LE(p.closure_error, 5e-12);
   expect_sides_preserved(p, 1e-12);
@@ -166,7 +165,7 @@ TEST(PolygonLpbd, RecoversRandomConvexPolygonsFromTheirOwnAngles) {
     const int n = 3 + trial % 6;
     // Random convex polygon: sorted random directions on an ellipse, scaled.
     std::vector<double> t;
-    for (int i = 0; i < n; ++i) t.push_back(2 * kPi * unit(rng));
+    for (int i = 0; i < n; ++i) t.push_back(2 * std::numbers::pi * unit(rng));
     std::sort(t.begin(), t.end());
     const double rx = 0.5 + 3 * unit(rng);
     const double ry = 0.5 + 3 * unit(rng);
@@ -180,7 +179,7 @@ TEST(PolygonLpbd, RecoversRandomConvexPolygonsFromTheirOwnAngles) {
       lengths.push_back(next.norm());
       angles.push_back(std::atan2(prev.x() * next.y() - prev.y() * next.x(), prev.dot(next)));
       angles.back() = std::abs(angles.back());
-      too_thin = too_thin || lengths.back() < 1e-3 || angles.back() > kPi - 1e-3;
+      too_thin = too_thin || lengths.back() < 1e-3 || angles.back() > std::numbers::pi - 1e-3;
     }
     if (too_thin) continue;
     const Lpbd lpbd = polygon_lpbd(lengths, angles);
@@ -219,10 +218,10 @@ TEST(PolygonLpbd, SurfaceAnglesInconsistentWithTheLengthsStillGiveClosedPolygons
     ASSERT_LE(lpbd.closure_error, 1e-12 * perimeter) << "trial " << trial;
     double sum = 0.0;
     for (double a : lpbd.angles) sum += a;
-    ASSERT_NEAR(sum, (n - 2) * kPi, 1e-12);
+    ASSERT_NEAR(sum, (n - 2) * std::numbers::pi, 1e-12);
     expect_sides_preserved(lpbd, 1e-12 * perimeter);
-    EXPECT_EQ(lpbd.convex,
-              std::all_of(lpbd.angles.begin(), lpbd.angles.end(), [](double a) { return a > 0 && a < kPi; }));
+    EXPECT_EQ(lpbd.convex, std::all_of(lpbd.angles.begin(), lpbd.angles.end(),
+                                       [](double a) { return a > 0 && a < std::numbers::pi; }));
   }
   EXPECT_GT(closable, 2500);
   // Measured with this generator: 3 misses (8-gons whose solution path folds) in 18087 trials,
@@ -236,14 +235,15 @@ TEST(PolygonLpbd, ConcaveResultIsReported) {
   const Lpbd dart = polygon_lpbd({1.0, 1.0, 2.0, 2.0}, {0.6, 4.3, 0.6, 0.8});
   ASSERT_TRUE(dart.valid);
   EXPECT_FALSE(dart.convex);
-  EXPECT_GT(dart.angles[1], kPi);
+  EXPECT_GT(dart.angles[1], std::numbers::pi);
   EXPECT_NEAR(dart.angles[0], dart.angles[2], 1e-12);
-  EXPECT_NEAR(dart.angles[0] + dart.angles[1] + dart.angles[2] + dart.angles[3], 2 * kPi, 1e-12);
+  EXPECT_NEAR(dart.angles[0] + dart.angles[1] + dart.angles[2] + dart.angles[3], 2 * std::numbers::pi, 1e-12);
   expect_sides_preserved(dart, 1e-12);
 }
 
 TEST(PolygonLpbd, SidesThatCannotCloseAreInvalid) {
-  const Lpbd q = polygon_lpbd({1.0, 1.0, 1.0, 3.0}, {kPi / 2, kPi / 2, kPi / 2, kPi / 2});
+  const Lpbd q = polygon_lpbd({1.0, 1.0, 1.0, 3.0}, {std::numbers::pi / 2, std::numbers::pi / 2,
+                                                     std::numbers::pi / 2, std::numbers::pi / 2});
   EXPECT_FALSE(q.valid);
   EXPECT_FALSE(q.convex);
   EXPECT_EQ(q.area, kDegenerateLpbdArea);

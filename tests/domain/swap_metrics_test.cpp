@@ -11,7 +11,6 @@
 namespace xparam {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 const double kSqrt2 = std::sqrt(2.0);
 
 // A quad a-r-b-l whose five curves have the lengths of a planar quad, the new diagonal given.
@@ -53,14 +52,14 @@ TEST(SwapLpbds, CornerOrderOfTheFourTriangles) {
   m.ar = 3.0, m.rb = 4.0, m.bl = 3.0, m.la = 4.0, m.ab = 5.0, m.lr = 5.0;
   const SwapLpbds lpbds = swap_lpbds(m);
   // before left (a, b, l) = (ab, bl, la) = (5, 3, 4): the right angle is at l.
-  EXPECT_NEAR(lpbds.before[0].angles[2], kPi / 2, 1e-15);
+  EXPECT_NEAR(lpbds.before[0].angles[2], std::numbers::pi / 2, 1e-15);
   // before right (b, a, r) = (ab, ar, rb) = (5, 3, 4): right angle at r; angle at a faces rb = 4.
-  EXPECT_NEAR(lpbds.before[1].angles[2], kPi / 2, 1e-15);
+  EXPECT_NEAR(lpbds.before[1].angles[2], std::numbers::pi / 2, 1e-15);
   EXPECT_NEAR(lpbds.before[1].angles[1], std::acos(3.0 / 5.0), 1e-15);
   // after left (l, r, b) = (lr, rb, bl) = (5, 4, 3): right angle at b; after right (r, l, a):
   // right angle at a.
-  EXPECT_NEAR(lpbds.after[0].angles[2], kPi / 2, 1e-15);
-  EXPECT_NEAR(lpbds.after[1].angles[2], kPi / 2, 1e-15);
+  EXPECT_NEAR(lpbds.after[0].angles[2], std::numbers::pi / 2, 1e-15);
+  EXPECT_NEAR(lpbds.after[1].angles[2], std::numbers::pi / 2, 1e-15);
 }
 
 TEST(WindingCurves, LongerThanThreeChordsOnBothSides) {
@@ -104,8 +103,10 @@ TEST(DadMetric, RhombusAgainstSquareByHand) {
   // triangles have pi/4, pi/4, pi/2. After: (l, r, b) has atan(2) at l and r, 2 atan(1/2) at b.
   const double t = std::atan(0.5);
   const auto rel2 = [](double s, double tt) { return ((s - tt) / s) * ((s - tt) / s); };
-  const double before = 2.0 * (2.0 * rel2(t, kPi / 4) + rel2(kPi - 2.0 * t, kPi / 2));
-  const double after = 2.0 * (2.0 * rel2(std::atan(2.0), kPi / 4) + rel2(2.0 * t, kPi / 2));
+  const double before =
+      2.0 * (2.0 * rel2(t, std::numbers::pi / 4) + rel2(std::numbers::pi - 2.0 * t, std::numbers::pi / 2));
+  const double after =
+      2.0 * (2.0 * rel2(std::atan(2.0), std::numbers::pi / 4) + rel2(2.0 * t, std::numbers::pi / 2));
   EXPECT_NEAR(dad_metric(m), before - after, 1e-12);
   EXPECT_GT(dad_metric(m), 0.0);  // the long diagonal of the rhombus is the one to swap
   // Identical sides: no distortion either way.
@@ -156,11 +157,12 @@ TEST(SdlMetric, ValueAndRefusals) {
 
 TEST(GarMetric, RhombusAgainstSquareAndDegenerateAngles) {
   // Greatest before: pi - 2 atan(1/2) (rhombus at l, r); after: the square's pi/2.
-  EXPECT_NEAR(gar_metric({rhombus(), unit_square()}), kPi - 2.0 * std::atan(0.5) - kPi / 2, 1e-14);
+  EXPECT_NEAR(gar_metric({rhombus(), unit_square()}),
+              std::numbers::pi - 2.0 * std::atan(0.5) - std::numbers::pi / 2, 1e-14);
   // A degenerate source triangle (a-b = 3 > 1 + 1): cos = (1 + 1 - 9) / 2 = -3.5 -> 3.5 pi
   // (paper's rule), so the swap that removes it reduces the greatest angle hugely.
   SwapMeasures degenerate = {quad(1.0, 3.0, 1.0), unit_square()};
-  EXPECT_NEAR(gar_metric(degenerate), 3.5 * kPi - kPi / 2, 1e-13);
+  EXPECT_NEAR(gar_metric(degenerate), 3.5 * std::numbers::pi - std::numbers::pi / 2, 1e-13);
 }
 
 TEST(BalancedThreshold, GoldenRatioRule) {
@@ -259,7 +261,8 @@ MergeMeasures square_merge(double ab_source, double ab_target) {
   MergeMeasures m;
   for (auto& side : m) {
     side.sides = {1.0, 1.0, 1.0, 1.0};
-    side.surface_angles = {kPi / 2, kPi / 2, kPi / 2, kPi / 2};
+    side.surface_angles = {std::numbers::pi / 2, std::numbers::pi / 2, std::numbers::pi / 2,
+                           std::numbers::pi / 2};
   }
   m[0].ab = ab_source;
   m[1].ab = ab_target;
@@ -273,15 +276,16 @@ TEST(MergeMetric, HandValues) {
   // have c = acos(-0.28) at l and r and (pi - c)/2 at a and b; the quads agree. Per triangle
   // |pi/2 - c| + 2 |pi/4 - (pi - c)/2| = 2c - pi, two triangles over six.
   const double c = std::acos(-0.28);
-  EXPECT_NEAR(*merge_metric(square_merge(kSqrt2, 1.6), false), (2.0 * c - kPi) / 3.0, 1e-10);
+  EXPECT_NEAR(*merge_metric(square_merge(kSqrt2, 1.6), false), (2.0 * c - std::numbers::pi) / 3.0, 1e-10);
   // Square against the rhombus a(0,0), r(1,-1/2), b(2,0), l(1,1/2) with its planar angles as the
   // surface angles: with t = atan(1/2), alpha term (2 pi - 8t)/6, gamma term (pi/2 - 2t):
   // (4t - pi)/6 < 0.
   MergeMeasures rhombus_merge = square_merge(kSqrt2, 2.0);
   const double t = std::atan(0.5);
   rhombus_merge[1].sides = {std::sqrt(1.25), std::sqrt(1.25), std::sqrt(1.25), std::sqrt(1.25)};
-  rhombus_merge[1].surface_angles = {2.0 * t, kPi - 2.0 * t, 2.0 * t, kPi - 2.0 * t};
-  EXPECT_NEAR(*merge_metric(rhombus_merge, false), (4.0 * t - kPi) / 6.0, 1e-10);
+  rhombus_merge[1].surface_angles = {2.0 * t, std::numbers::pi - 2.0 * t, 2.0 * t,
+                                     std::numbers::pi - 2.0 * t};
+  EXPECT_NEAR(*merge_metric(rhombus_merge, false), (4.0 * t - std::numbers::pi) / 6.0, 1e-10);
 }
 
 TEST(MergeMetric, TheThreeRefusals) {
@@ -300,11 +304,11 @@ TEST(MergeMetric, TheThreeRefusals) {
   const double at_r = std::acos(3.0 / std::sqrt(10.0));
   dart[1].sides = {std::sqrt(5.0), kSqrt2, kSqrt2, std::sqrt(5.0)};
   dart[1].ab = 1.0;
-  dart[1].surface_angles = {at_a, at_r, 1.5 * kPi, at_r};
+  dart[1].surface_angles = {at_a, at_r, 1.5 * std::numbers::pi, at_r};
   EXPECT_FALSE(merge_metric(dart, false).has_value());
   // The same sides as the convex kite a(0,0), r(2,-1), b(3,0), l(2,1) are fine.
   const double at_r_kite = std::acos(-1.0 / std::sqrt(10.0));
-  dart[1].surface_angles = {at_a, at_r_kite, kPi / 2, at_r_kite};
+  dart[1].surface_angles = {at_a, at_r_kite, std::numbers::pi / 2, at_r_kite};
   EXPECT_TRUE(merge_metric(dart, false).has_value());
 }
 

@@ -26,7 +26,7 @@ std::array<int, 3> corners(const Mesh& mesh, int face) {
 }
 
 // Writes a soup as an OBJ file (17 significant digits: doubles survive the round trip).
-void write_obj(const std::filesystem::path& path, const TriangleSoup& soup) {
+void write_soup(const std::filesystem::path& path, const TriangleSoup& soup) {
   std::ofstream out(path);
   out << std::setprecision(17);
   for (const auto& p : soup.vertices) out << "v " << p.x() << " " << p.y() << " " << p.z() << "\n";
@@ -82,7 +82,7 @@ TEST(MeshLoader, InwardMeshIsFlippedAndBarycentricsMapBackToTheFile) {
   TriangleSoup inward = read_triangle_soup(test::data_path("spot_low_resolution.obj"));
   for (auto& t : inward.triangles) std::swap(t[1], t[2]);
   const auto path = test::fresh_temp_dir("mesh_loader_inward") / "spot_inward.obj";
-  write_obj(path, inward);
+  write_soup(path, inward);
   const TriangleSoup file = read_triangle_soup(path);
 
   const LoadedMesh loaded = load_mesh(path);
@@ -111,7 +111,7 @@ void check_locally_flipped_spot(bool inward, const std::string& name) {
   if (inward)
     for (auto& t : soup.triangles) std::swap(t[1], t[2]);
   const auto path = test::fresh_temp_dir(name) / "spot_flipped.obj";
-  write_obj(path, soup);
+  write_soup(path, soup);
   const TriangleSoup file = read_triangle_soup(path);
 
   const LoadedMesh loaded = load_mesh(path);
@@ -154,7 +154,7 @@ TEST(MeshLoader, RepairsCanBeTurnedOff) {
   TriangleSoup soup = read_triangle_soup(test::data_path("spot_low_resolution.obj"));
   std::swap(soup.triangles[10][1], soup.triangles[10][2]);
   const auto path = test::fresh_temp_dir("mesh_loader_no_repair") / "spot_one_flipped.obj";
-  write_obj(path, soup);
+  write_soup(path, soup);
   ValidationSettings as_is;
   as_is.repair = false;
   try {
@@ -187,7 +187,7 @@ std::filesystem::path write_double_pyramid(const std::filesystem::path& dir) {
     soup.triangles.push_back({ring(i, 2), ring(i + 1, 0), ring(i, 0)});
     soup.triangles.push_back({12, ring(i + 1, 2), ring(i, 2)});
   }
-  write_obj(dir / "pinched.obj", soup);
+  write_soup(dir / "pinched.obj", soup);
   return dir / "pinched.obj";
 }
 
@@ -240,7 +240,7 @@ TEST(MeshLoader, UnusableMeshesAreRefusedWithTheFirstProblems) {
   TriangleSoup fin;
   fin.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
   fin.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}, {1, 2, 4}};
-  write_obj(dir / "fin.obj", fin);
+  write_soup(dir / "fin.obj", fin);
   const std::string fin_error = load_error(dir / "fin.obj");
   EXPECT_NE(fin_error.find("fin.obj: edge (1, 2) has 3 faces"), std::string::npos) << fin_error;
 
@@ -252,7 +252,7 @@ TEST(MeshLoader, UnusableMeshesAreRefusedWithTheFirstProblems) {
       scattered.vertices.push_back(p + Eigen::Vector3d(2.0 * i, 0, 0));
     scattered.triangles.push_back({base, base + 1, base + 2});
   }
-  write_obj(dir / "scattered.obj", scattered);
+  write_soup(dir / "scattered.obj", scattered);
   const std::string many = load_error(dir / "scattered.obj");
   EXPECT_NE(many.find("; ..."), std::string::npos) << many;
   EXPECT_EQ(std::count(many.begin(), many.end(), ';'), kProblemsInLoadError) << many;

@@ -17,14 +17,14 @@ namespace {
 
 using test::vertex_at;
 
-constexpr int kDivisions = 4;
+constexpr int kOctahedronDivisions = 4;
 
 // An octahedron subdivision with the six corners as anchors and no chains yet.
 Layout bare_octahedron() {
   Layout layout;
   layout.n_anchors = 6;
   for (LayoutSide& side : layout.sides) {
-    side.mesh = test::subdivided_octahedron(kDivisions);
+    side.mesh = test::subdivided_octahedron(kOctahedronDivisions);
     for (int k = 0; k < 6; ++k) side.anchor_vertices.emplace_back(k);
   }
   return layout;
@@ -48,9 +48,10 @@ TEST(PathTracing, ShortestPathBetweenFreeAnchorsIsTheOctahedronEdge) {
       trace_path(side.mesh, labels, VertexHandle(0), first, VertexHandle(2), last, scratch);
   ASSERT_TRUE(path.found());
   EXPECT_NEAR(path.length, std::sqrt(2.0), 1e-12);
-  ASSERT_EQ(path.vertices.size(), static_cast<std::size_t>(kDivisions + 1));
-  for (int t = 0; t <= kDivisions; ++t) {
-    const Eigen::Vector3d expected = Eigen::Vector3d(1, 0, 0) + Eigen::Vector3d(-1, 1, 0) * t / kDivisions;
+  ASSERT_EQ(path.vertices.size(), static_cast<std::size_t>(kOctahedronDivisions + 1));
+  for (int t = 0; t <= kOctahedronDivisions; ++t) {
+    const Eigen::Vector3d expected =
+        Eigen::Vector3d(1, 0, 0) + Eigen::Vector3d(-1, 1, 0) * t / kOctahedronDivisions;
     EXPECT_LT((position(side.mesh, path.vertices[t]) - expected).norm(), 1e-12) << "vertex " << t;
   }
 }
@@ -60,9 +61,11 @@ TEST(PathTracing, WedgesFollowTheCounterClockwiseRotation) {
   const Mesh& mesh = layout.sides[0].mesh;
   // Chains +x -> +y and +x -> -y along the octahedron edges split the ring of +x in two.
   std::vector<VertexHandle> to_py, to_ny;
-  for (int t = 0; t <= kDivisions; ++t) {
-    to_py.push_back(vertex_at(mesh, Eigen::Vector3d(1, 0, 0) + Eigen::Vector3d(-1, 1, 0) * t / kDivisions));
-    to_ny.push_back(vertex_at(mesh, Eigen::Vector3d(1, 0, 0) + Eigen::Vector3d(-1, -1, 0) * t / kDivisions));
+  for (int t = 0; t <= kOctahedronDivisions; ++t) {
+    to_py.push_back(
+        vertex_at(mesh, Eigen::Vector3d(1, 0, 0) + Eigen::Vector3d(-1, 1, 0) * t / kOctahedronDivisions));
+    to_ny.push_back(
+        vertex_at(mesh, Eigen::Vector3d(1, 0, 0) + Eigen::Vector3d(-1, -1, 0) * t / kOctahedronDivisions));
   }
   add_chain(layout, 0, 2, to_py);
   add_chain(layout, 0, 3, to_ny);
@@ -138,10 +141,10 @@ TEST(Refinement, SplitsEdgesBetweenTwoChainsButNotChainEdges) {
   // Two chains +x -> +y in face (+x, +y, +z): along the octahedron edge (weights (4-t, t, 0)/4)
   // and one lattice row inside ((3-t, t, 1)/4 between the anchors).
   std::vector<VertexHandle> edge_chain, row_chain = {VertexHandle(0)};
-  for (int t = 0; t <= kDivisions; ++t)
-    edge_chain.push_back(vertex_at(input, Eigen::Vector3d(4 - t, t, 0) / kDivisions));
+  for (int t = 0; t <= kOctahedronDivisions; ++t)
+    edge_chain.push_back(vertex_at(input, Eigen::Vector3d(4 - t, t, 0) / kOctahedronDivisions));
   for (int t = 0; t <= 3; ++t)
-    row_chain.push_back(vertex_at(input, Eigen::Vector3d(3 - t, t, 1) / kDivisions));
+    row_chain.push_back(vertex_at(input, Eigen::Vector3d(3 - t, t, 1) / kOctahedronDivisions));
   row_chain.push_back(VertexHandle(2));
   add_chain(layout, 0, 2, edge_chain);
   add_chain(layout, 0, 2, row_chain);

@@ -1,7 +1,8 @@
 // Whole pairs mapped several times to compare: at 1 and 2 threads, and with and without the
-// untangling on every sample target; and the bundled man/woman pair's hands against its truth. Long under the
-// sanitizers (which cannot see a race anyway, and whose reach the fast pair tests already give this code), so
-// they run in the Release pass only (label `slow`).
+// untangling on every sample target; a rigidly moved, scaled copy of the man; and the bundled
+// man/woman pair's hands against its truth. Long under the sanitizers (which cannot see a race
+// anyway, and whose reach the fast pair tests already give this code), so they run in the Release
+// pass only (label `slow`).
 #include "map/pair_mapping.h"
 
 #include "io/anchor_reader.h"
@@ -13,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <tbb/global_control.h>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <numeric>
@@ -50,7 +52,24 @@ TEST(PairMapping, UntanglingIsTheSameAtOneAndTwoThreads) {
     EXPECT_TRUE(one.curves[c].positions == two.curves[c].positions);
 }
 
-
+// The whole pair on a rotated, scaled and moved copy: every stage is invariant under a similarity,
+// so nothing is stretched.
+TEST(PairMapping, RigidlyMovedScaledCopyHasNoStretch) {
+  const LoadedMesh man = load_mesh(test::data_path("human_man.obj"));
+  const AnchorSet anchors = read_anchors(test::data_path("human_man.anchors.json"));
+  Mesh moved = man.mesh;
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const double scale = 2.5;
+  for (VertexHandle v : moved.vertices()) {
+    moved.set_point(v, to_point(scale * rotation * position(moved, v) + Eigen::Vector3d(0.3, -1.0, 4.0)));
+  }
+  const PairMapping map = map_pair(man.mesh, anchors, moved, anchors, {});
+  EXPECT_NEAR(map.distortion.all.e_l2, 1.0, 1e-6);
+  EXPECT_NEAR(map.distortion.all.e_ang, 0.0, 1e-6);
+  EXPECT_TRUE(map.quality.flipped_faces.empty());
+  EXPECT_NEAR(map.quality.area_ratio, 1.0, 1e-6);
+}
 
 // Untangling on the sample targets of the SMPL man (the woman, the bent man, the man with
 // flipped edges): Gamma's remesh folds 5, 16 and 15 faces, Gamma . phi's none; the area is kept

@@ -10,8 +10,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Geometry>
-
 #include <cstdio>
 #include <string>
 
@@ -44,22 +42,6 @@ TEST(PairMapping, MeshAgainstItselfIsTheIdentity) {
   EXPECT_NEAR(map.distortion.all.e_ang, 0.0, 1e-9);
   EXPECT_TRUE(map.quality.flipped_faces.empty());
   EXPECT_NEAR(map.quality.area_ratio, 1.0, 1e-9);
-}
-
-TEST(PairMapping, RigidlyMovedScaledCopyHasNoStretch) {
-  const HumanMan& man = human_man();
-  Mesh moved = man.mesh.mesh;
-  const Eigen::Matrix3d rotation =
-      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  const double scale = 2.5;
-  for (VertexHandle v : moved.vertices()) {
-    moved.set_point(v, to_point(scale * rotation * position(moved, v) + Eigen::Vector3d(0.3, -1.0, 4.0)));
-  }
-  const PairMapping map = map_pair(man.mesh.mesh, man.anchors, moved, man.anchors, {});
-  EXPECT_NEAR(map.distortion.all.e_l2, 1.0, 1e-6);
-  EXPECT_NEAR(map.distortion.all.e_ang, 0.0, 1e-6);
-  EXPECT_TRUE(map.quality.flipped_faces.empty());
-  EXPECT_NEAR(map.quality.area_ratio, 1.0, 1e-6);
 }
 
 // A target over four times finer than the template in a patch relaxes its squeezed parameterization

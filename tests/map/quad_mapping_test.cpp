@@ -22,10 +22,10 @@ namespace {
 using test::data_path;
 using test::handles;
 
-constexpr double kPi = std::numbers::pi;
-
 TEST(PatchPolygon, UnitSquareIsItsOwnLpbd) {
-  const PatchPolygon square = patch_polygon({1, 1, 1, 1}, {kPi / 2, kPi / 2, kPi / 2, kPi / 2}, {1, 1, 1, 1});
+  const PatchPolygon square = patch_polygon(
+      {1, 1, 1, 1}, {std::numbers::pi / 2, std::numbers::pi / 2, std::numbers::pi / 2, std::numbers::pi / 2},
+      {1, 1, 1, 1});
   EXPECT_FALSE(square.fallback);
   ASSERT_EQ(square.corners.size(), 4u);
   const Eigen::Vector2d expected[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -34,7 +34,7 @@ TEST(PatchPolygon, UnitSquareIsItsOwnLpbd) {
 
 TEST(PatchPolygon, ConcaveOrDegenerateLpbdsFallBackToConvexPolygons) {
   // Surface angles of a dart: eq. 2 keeps the reflex corner, which no mean-value map can fill.
-  const std::vector<double> dart = {0.4, 0.4, 0.4, 2 * kPi - 1.2};
+  const std::vector<double> dart = {0.4, 0.4, 0.4, 2 * std::numbers::pi - 1.2};
   const PatchPolygon concave = patch_polygon({1, 1, 1, 1}, dart, {1, 1, 1, 1});
   ASSERT_TRUE(concave.lpbd.valid);
   EXPECT_FALSE(concave.lpbd.convex);
@@ -43,7 +43,9 @@ TEST(PatchPolygon, ConcaveOrDegenerateLpbdsFallBackToConvexPolygons) {
   // Curves that cannot close (5 > 1 + 1 + 1) but chords that can: the chords' LPBD, with the
   // chords as its sides.
   const std::vector<double> chords = {1, 1, 1, 1.5};
-  const PatchPolygon open = patch_polygon({1, 1, 1, 5}, {kPi / 2, kPi / 2, kPi / 2, kPi / 2}, chords);
+  const PatchPolygon open = patch_polygon(
+      {1, 1, 1, 5}, {std::numbers::pi / 2, std::numbers::pi / 2, std::numbers::pi / 2, std::numbers::pi / 2},
+      chords);
   EXPECT_FALSE(open.lpbd.valid);
   EXPECT_TRUE(open.fallback);
   ASSERT_TRUE(is_strictly_convex(open.corners));

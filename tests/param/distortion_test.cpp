@@ -16,8 +16,6 @@
 namespace xparam {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 struct Soup {
   std::vector<Eigen::Vector3d> positions;
   std::vector<std::array<int, 3>> faces;
@@ -84,7 +82,7 @@ TEST(Distortion, StretchByTwoAlongOneAxisHandComputed) {
   EXPECT_NEAR(r.face_max_stretch[0], 2.0, 1e-15);
   EXPECT_NEAR(r.all.stretch_max_sv, 2.0, 1e-15);
   // Angles (pi/2, pi/4, pi/4) become (pi/2, atan(1/2), atan 2).
-  const double q = kPi / 4;
+  const double q = std::numbers::pi / 4;
   const double expected =
       (std::pow((q - std::atan(0.5)) / q, 2) + std::pow((q - std::atan(2.0)) / q, 2)) / 3.0;
   EXPECT_NEAR(r.face_angle_distortion[0], expected, 1e-15);

@@ -13,16 +13,14 @@
 namespace xparam {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // A random strictly convex k-gon: sorted angles on a random ellipse, rotated and moved.
 std::vector<Eigen::Vector2d> random_convex_polygon(std::mt19937& rng, int k) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   while (true) {
     std::vector<double> t;
-    for (int i = 0; i < k; ++i) t.push_back(2 * kPi * unit(rng));
+    for (int i = 0; i < k; ++i) t.push_back(2 * std::numbers::pi * unit(rng));
     std::sort(t.begin(), t.end());
-    const double rx = 0.3 + 2 * unit(rng), ry = 0.3 + 2 * unit(rng), turn = 2 * kPi * unit(rng);
+    const double rx = 0.3 + 2 * unit(rng), ry = 0.3 + 2 * unit(rng), turn = 2 * std::numbers::pi * unit(rng);
     const Eigen::Vector2d shift(4 * unit(rng) - 2, 4 * unit(rng) - 2);
     std::vector<Eigen::Vector2d> polygon;
     for (double ti : t) {
