@@ -1,6 +1,7 @@
 #include "domain/lpbd.h"
 
 #include "core/errors.h"
+#include "core/planar.h"
 
 #include <Eigen/Dense>
 
@@ -38,7 +39,7 @@ double polygon_area(const std::vector<Eigen::Vector2d>& corners) {
   for (std::size_t i = 0; i < corners.size(); ++i) {
     const Eigen::Vector2d& a = corners[i];
     const Eigen::Vector2d& b = corners[(i + 1) % corners.size()];
-    twice += a.x() * b.y() - a.y() * b.x();
+    twice += cross2(a, b);
   }
   return 0.5 * twice;
 }

@@ -4,6 +4,7 @@
 #include "core/planar.h"
 
 namespace xparam {
+
 std::vector<FunnelApex> funnel_path(const std::vector<Portal>& portals, const FunnelApex& start,
                                     const FunnelApex& end) {
   const int n = static_cast<int>(portals.size());

@@ -1,6 +1,7 @@
 #include "measure/plane_section.h"
 
 #include "core/closest_point.h"
+#include "core/planar.h"
 
 #include <Eigen/Geometry>
 
@@ -16,10 +17,6 @@ namespace {
 Eigen::Vector3d crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double da, double db) {
   const double t = da / (da - db);
   return a + t * (b - a);
-}
-
-double cross_2d(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
 
 }  // namespace
@@ -113,11 +110,11 @@ double convex_hull_perimeter(const std::vector<Eigen::Vector3d>& points, const E
   std::vector<Eigen::Vector2d> hull(2 * flat.size());
   std::size_t k = 0;
   for (const Eigen::Vector2d& p : flat) {
-    while (k >= 2 && cross_2d(hull[k - 2], hull[k - 1], p) <= 0.0) --k;
+    while (k >= 2 && signed_area2(hull[k - 2], hull[k - 1], p) <= 0.0) --k;
     hull[k++] = p;
   }
   for (std::size_t i = flat.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && cross_2d(hull[k - 2], hull[k - 1], flat[i]) <= 0.0) --k;
+    while (k >= lower && signed_area2(hull[k - 2], hull[k - 1], flat[i]) <= 0.0) --k;
     hull[k++] = flat[i];
   }
   // The chain ends where it started; its segments are the hull's sides.

@@ -16,7 +16,7 @@ bool is_strictly_convex(const std::vector<Eigen::Vector2d>& polygon) {
     if (!(signed_area2(a, b, c) > 0.0)) return false;
     const Eigen::Vector2d in = b - a;
     const Eigen::Vector2d out = c - b;
-    turning += std::atan2(in.x() * out.y() - in.y() * out.x(), in.dot(out));
+    turning += std::atan2(cross2(in, out), in.dot(out));
   }
   // All left turns winding once add up to 2 pi; a star polygon (all left turns) winds more.
   return turning < 3.0 * std::numbers::pi;

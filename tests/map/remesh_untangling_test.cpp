@@ -2,6 +2,7 @@
 
 #include "core/anchors.h"
 #include "core/errors.h"
+#include "core/planar.h"
 #include "core/provenance.h"
 #include "io/anchor_reader.h"
 #include "io/mesh_loader.h"
@@ -97,8 +98,6 @@ struct SwirlCase {
 
   std::vector<std::array<int, 3>> faces() const { return triangles_of(source); }
 };
-
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Both fan centres of a move strictly inside the kernel of its flattened star.
 void expect_in_kernel(const StarMove& move) {
